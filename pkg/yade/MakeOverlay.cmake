@@ -1,0 +1,10 @@
+# Builds the overlay YADE prefix (script mode: YADE_LIB_DIR, OVERLAY, PLUGIN).
+file(REMOVE_RECURSE ${OVERLAY})
+file(MAKE_DIRECTORY ${OVERLAY}/swelldem)
+file(GLOB _libs ${YADE_LIB_DIR}/lib*.so)
+foreach(_lib ${_libs})
+  get_filename_component(_name ${_lib} NAME)
+  file(CREATE_LINK ${_lib} ${OVERLAY}/${_name} SYMBOLIC)
+endforeach()
+file(CREATE_LINK ${YADE_LIB_DIR}/py ${OVERLAY}/py SYMBOLIC)
+file(CREATE_LINK ${PLUGIN} ${OVERLAY}/swelldem/libswelldem.so SYMBOLIC)

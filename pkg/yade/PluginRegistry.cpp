@@ -1,0 +1,22 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// The one list of swelldem's YADE classes: each is registered with YADE's ClassFactory, exported
+// to boost::serialization, and announced to YADE, which then exposes it in Python at start-up.
+#include "SwelldemAbiProbe.hpp"
+
+#define SWELLDEM_PLUGIN_CLASSES(X) X(SwelldemAbiProbe)
+
+namespace yade {
+#define SWELLDEM_REGISTER(C) static swelldem_py::FactoryRegistration<C> registration_##C(#C);
+SWELLDEM_PLUGIN_CLASSES(SWELLDEM_REGISTER)
+#undef SWELLDEM_REGISTER
+
+__attribute__((constructor)) static void announceSwelldemClasses()
+{
+#define SWELLDEM_NAME(C) #C,
+	static const char* fileAndClasses[] = { __FILE__, SWELLDEM_PLUGIN_CLASSES(SWELLDEM_NAME) nullptr };
+#undef SWELLDEM_NAME
+	ClassFactory::instance().registerPluginClasses(fileAndClasses);
+}
+} // namespace yade
+
+SWELLDEM_PLUGIN_CLASSES(SWELLDEM_EXPORT_SERIALIZATION)

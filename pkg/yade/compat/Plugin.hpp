@@ -1,0 +1,171 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// How swelldem defines its own YADE classes without YADE's headers: one attribute list per class
+// (an X-macro) generates the members, their Python properties with docstrings, pySetAttr/pyDict
+// and boost::serialization, the way YADE's own class macros do for in-tree classes.
+#pragma once
+#include "Engines.hpp"
+#include <boost/archive/binary_iarchive.hpp>
+#include <boost/archive/binary_oarchive.hpp>
+#include <boost/archive/xml_iarchive.hpp>
+#include <boost/archive/xml_oarchive.hpp>
+// The archive headers must precede export.hpp: the export machinery then instantiates the
+// pointer serializers for exactly the four archive types YADE's O.save/O.load use.
+#include <boost/serialization/base_object.hpp>
+#include <boost/serialization/export.hpp>
+#include <boost/serialization/factory.hpp>
+#include <boost/serialization/nvp.hpp>
+#include <boost/serialization/shared_ptr.hpp>
+#include <boost/serialization/string.hpp>
+#include <boost/serialization/vector.hpp>
+#include <limits>
+
+namespace yade {
+namespace swelldem_py {
+	namespace bp = boost::python;
+
+	// Python constructor accepting keyword attributes only, like YADE's classes.
+	template <typename T> shared_ptr<T> constructWithAttrs(bp::tuple& args, bp::dict& kw)
+	{
+		shared_ptr<T> instance(new T);
+		instance->pyHandleCustomCtorArgs(args, kw);
+		if (bp::len(args) > 0) throw std::invalid_argument(instance->getClassName() + ": only keyword arguments are accepted.");
+		if (bp::len(kw) > 0) {
+			instance->pyUpdateAttrs(kw);
+			instance->callPostLoad();
+		}
+		return instance;
+	}
+
+	// boost::python has no raw constructor; this is the usual make_constructor + raw_function pairing.
+	template <class F> struct RawCtor {
+		explicit RawCtor(F fn)
+		        : ctor(bp::make_constructor(fn))
+		{
+		}
+		PyObject* operator()(PyObject* args, PyObject* kw)
+		{
+			bp::object all(bp::handle<>(bp::borrowed(args)));
+			bp::dict   kwd = kw ? bp::dict(bp::handle<>(bp::borrowed(kw))) : bp::dict();
+			bp::object self(all[0]);
+			bp::object rest(all.slice(1, bp::len(all)));
+			return bp::incref(bp::object(ctor(self, rest, kwd)).ptr());
+		}
+		bp::object ctor;
+	};
+	template <class F> bp::object rawConstructor(F fn)
+	{
+		return bp::detail::make_raw_function(bp::objects::py_function(
+		        RawCtor<F>(fn), boost::mpl::vector2<void, bp::object>(), 1, (std::numeric_limits<unsigned>::max)()));
+	}
+
+	// Registers T with YADE's ClassFactory (what YADE's REGISTER_FACTORABLE does for its classes).
+	template <class T> struct FactoryRegistration {
+		static Factorable*            create() { return new T; }
+		static shared_ptr<Factorable> createShared() { return shared_ptr<Factorable>(new T); }
+		static void*                  createPure() { return new T; }
+		explicit FactoryRegistration(const char* name) { ClassFactory::instance().registerFactorable(name, &create, &createShared, &createPure); }
+	};
+} // namespace swelldem_py
+} // namespace yade
+
+// ---- attribute list expansion; an attribute list is   #define ATTRS(X) X(type, name, default, "doc [unit]") ...
+#define SWELLDEM_ATTR_MEMBER(type, name, def, doc) type name = def;
+#define SWELLDEM_ATTR_SERIALIZE(type, name, def, doc) ar& boost::serialization::make_nvp(#name, name);
+#define SWELLDEM_ATTR_SET(type, name, def, doc)                                                                                                                \
+	if (key == #name) {                                                                                                                                    \
+		name = boost::python::extract<type>(value);                                                                                                    \
+		return;                                                                                                                                        \
+	}
+#define SWELLDEM_ATTR_GET(type, name, def, doc) ret[#name] = boost::python::object(name);
+#define SWELLDEM_ATTR_PROPERTY(type, name, def, doc)                                                                                                           \
+	cls.add_property(#name,                                                                                                                                \
+	                 boost::python::make_getter(&ThisClass::name, boost::python::return_value_policy<boost::python::return_by_value>()),                   \
+	                 boost::python::make_setter(&ThisClass::name, boost::python::return_value_policy<boost::python::return_by_value>()),                   \
+	                 doc);
+
+// Everything a swelldem class needs to be a YADE Serializable. The class must also define
+// `void postLoad()` (called after attributes are set from Python or loaded from a file; the
+// place to validate them) and `template <class C> static void pyMethods(C&)` (extra Python methods).
+#define SWELLDEM_CLASS(Class, Base, docString, ATTRS)                                                                                                          \
+public:                                                                                                                                                        \
+	using ThisClass = Class;                                                                                                                               \
+	ATTRS(SWELLDEM_ATTR_MEMBER)                                                                                                                            \
+	string getClassName() const override { return #Class; }                                                                                                \
+	string getBaseClassName(unsigned int i = 0) const override { return i == 0 ? string(#Base) : string(); }                                               \
+	int    getBaseClassNumber() const override { return 1; }                                                                                               \
+	void   pySetAttr(const std::string& key, const boost::python::object& value) override                                                                  \
+	{                                                                                                                                                      \
+		ATTRS(SWELLDEM_ATTR_SET)                                                                                                                       \
+		Base::pySetAttr(key, value);                                                                                                                   \
+	}                                                                                                                                                      \
+	boost::python::dict pyDict() const override                                                                                                            \
+	{                                                                                                                                                      \
+		boost::python::dict ret;                                                                                                                       \
+		ATTRS(SWELLDEM_ATTR_GET)                                                                                                                       \
+		ret.update(this->pyDictCustom());                                                                                                              \
+		ret.update(Base::pyDict());                                                                                                                    \
+		return ret;                                                                                                                                    \
+	}                                                                                                                                                      \
+	void callPostLoad(void) override                                                                                                                       \
+	{                                                                                                                                                      \
+		Base::callPostLoad();                                                                                                                          \
+		postLoad();                                                                                                                                    \
+	}                                                                                                                                                      \
+	void pyRegisterClass(boost::python::object scope_) override                                                                                            \
+	{                                                                                                                                                      \
+		checkPyClassRegistersItself(#Class);                                                                                                           \
+		boost::python::scope                 thisScope(scope_);                                                                                        \
+		boost::python::docstring_options     docopt;                                                                                                   \
+		docopt.enable_all();                                                                                                                           \
+		docopt.disable_cpp_signatures();                                                                                                               \
+		boost::python::class_<Class, shared_ptr<Class>, boost::python::bases<Base>, boost::noncopyable> cls(#Class, docString);                     \
+		cls.def("__init__", swelldem_py::rawConstructor(swelldem_py::constructWithAttrs<Class>));                                                       \
+		ATTRS(SWELLDEM_ATTR_PROPERTY)                                                                                                                  \
+		pyMethods(cls);                                                                                                                                \
+	}                                                                                                                                                      \
+	friend class boost::serialization::access;                                                                                                             \
+	template <class Archive> void serialize(Archive& ar, unsigned int)                                                                                     \
+	{                                                                                                                                                      \
+		ar& boost::serialization::make_nvp(#Base, boost::serialization::base_object<Base>(*this));                                                     \
+		ATTRS(SWELLDEM_ATTR_SERIALIZE)                                                                                                                 \
+	}
+
+// A class YADE dispatches on (an IPhys, a Material) needs its own index in its family.
+#define SWELLDEM_CLASS_INDEX(Class, Base)                                                                                                                      \
+private:                                                                                                                                                       \
+	static int& indexStorage()                                                                                                                             \
+	{                                                                                                                                                      \
+		static int index = -1;                                                                                                                         \
+		return index;                                                                                                                                  \
+	}                                                                                                                                                      \
+                                                                                                                                                               \
+protected:                                                                                                                                                     \
+	int& modifyClassIndex() override { return indexStorage(); }                                                                                            \
+                                                                                                                                                               \
+public:                                                                                                                                                        \
+	const int& getClassIndex() const override { return indexStorage(); }                                                                                   \
+	const int& getBaseClassIndex(int depth) const override                                                                                                 \
+	{                                                                                                                                                      \
+		static Base* base = new Base; /* leaked on purpose: no destruction-order issue at exit */                                                     \
+		return depth == 1 ? base->getClassIndex() : base->getBaseClassIndex(depth - 1);                                                                \
+	}
+
+// Base-class (de)serialization must run the instances compiled into YADE's libraries (Base::serialize
+// is private there): declare those instantiations extern, instantiate only their inline constructors.
+#define SWELLDEM_USE_YADE_SERIALIZER(Base)                                                                                                                     \
+	extern template class boost::archive::detail::oserializer<boost::archive::xml_oarchive, Base>;                                                        \
+	extern template class boost::archive::detail::oserializer<boost::archive::binary_oarchive, Base>;                                                     \
+	extern template class boost::archive::detail::iserializer<boost::archive::xml_iarchive, Base>;                                                        \
+	extern template class boost::archive::detail::iserializer<boost::archive::binary_iarchive, Base>;
+
+SWELLDEM_USE_YADE_SERIALIZER(yade::FrictPhys)
+SWELLDEM_USE_YADE_SERIALIZER(yade::FrictMat)
+SWELLDEM_USE_YADE_SERIALIZER(yade::GlobalEngine)
+SWELLDEM_USE_YADE_SERIALIZER(yade::IPhysFunctor)
+SWELLDEM_USE_YADE_SERIALIZER(yade::LawFunctor)
+
+// At global scope, once per class, in its .cpp: the serialization export key and factory.
+#define SWELLDEM_EXPORT_SERIALIZATION(Class)                                                                                                                   \
+	BOOST_CLASS_EXPORT_KEY2(yade::Class, "yade::" #Class)                                                                                                  \
+	BOOST_CLASS_EXPORT_IMPLEMENT(yade::Class)                                                                                                              \
+	BOOST_SERIALIZATION_FACTORY_0(yade::Class)
