@@ -1,9 +1,22 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The one list of swelldem's YADE classes: each is registered with YADE's ClassFactory, exported
 // to boost::serialization, and announced to YADE, which then exposes it in Python at start-up.
+#include "AdrLogTimeIntegrator.hpp"
+#include "ConcreteMat.hpp"
+#include "ContactKind.hpp"
+#include "Ip2_ConcreteMat_ConcreteMat_SwellPhys.hpp"
+#include "Law2_ScGeom_SwellPhys_AgingSwelling.hpp"
+#include "SwellPhys.hpp"
 #include "SwelldemAbiProbe.hpp"
 
-#define SWELLDEM_PLUGIN_CLASSES(X) X(SwelldemAbiProbe)
+#define SWELLDEM_PLUGIN_CLASSES(X)                                                                                                                             \
+	X(ConcreteMat)                                                                                                                                         \
+	X(ContactKind)                                                                                                                                         \
+	X(SwellPhys)                                                                                                                                           \
+	X(Ip2_ConcreteMat_ConcreteMat_SwellPhys)                                                                                                               \
+	X(Law2_ScGeom_SwellPhys_AgingSwelling)                                                                                                                 \
+	X(AdrLogTimeIntegrator)                                                                                                                                \
+	X(SwelldemAbiProbe)
 
 namespace yade {
 #define SWELLDEM_REGISTER(C) static swelldem_py::FactoryRegistration<C> registration_##C(#C);

@@ -158,6 +158,7 @@ public:                                                                         
 	extern template class boost::archive::detail::iserializer<boost::archive::xml_iarchive, Base>;                                                        \
 	extern template class boost::archive::detail::iserializer<boost::archive::binary_iarchive, Base>;
 
+SWELLDEM_USE_YADE_SERIALIZER(yade::Serializable)
 SWELLDEM_USE_YADE_SERIALIZER(yade::FrictPhys)
 SWELLDEM_USE_YADE_SERIALIZER(yade::FrictMat)
 SWELLDEM_USE_YADE_SERIALIZER(yade::GlobalEngine)

@@ -10,6 +10,7 @@
 	template boost::archive::detail::iserializer<boost::archive::xml_iarchive, Base>::iserializer();                                                      \
 	template boost::archive::detail::iserializer<boost::archive::binary_iarchive, Base>::iserializer();
 
+SWELLDEM_INSTANTIATE_SERIALIZER_CTORS(yade::Serializable)
 SWELLDEM_INSTANTIATE_SERIALIZER_CTORS(yade::FrictPhys)
 SWELLDEM_INSTANTIATE_SERIALIZER_CTORS(yade::FrictMat)
 SWELLDEM_INSTANTIATE_SERIALIZER_CTORS(yade::GlobalEngine)

@@ -1,0 +1,295 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "AdrLogTimeIntegrator.hpp"
+#include "core/LogTimes.hpp"
+#include "core/Validate.hpp"
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <set>
+#include <sstream>
+
+namespace yade {
+namespace core = swelldem::core;
+
+namespace {
+	const unsigned kNeed2D = State::DOF_Z | State::DOF_RX | State::DOF_RY;
+	string         num(double v)
+	{
+		std::ostringstream o;
+		o.precision(4);
+		o << v;
+		return o.str();
+	}
+}
+
+void AdrLogTimeIntegrator::postLoad()
+{
+	core::requirePositive("AdrLogTimeIntegrator.tStart [day]", tStart);
+	core::requireGreater("AdrLogTimeIntegrator.tEnd [day]", tEnd, "tStart", tStart);
+	core::requirePositive("AdrLogTimeIntegrator.stepsPerDecade", stepsPerDecade);
+	core::requireOpenInterval("AdrLogTimeIntegrator.tolerance", tolerance, 0, 1);
+	core::require(minIterations >= 1, "AdrLogTimeIntegrator.minIterations", minIterations, ">= 1");
+	core::require(maxIterations >= minIterations, "AdrLogTimeIntegrator.maxIterations", maxIterations, ">= minIterations");
+	core::require(massSafety >= 1, "AdrLogTimeIntegrator.massSafety", massSafety, ">= 1");
+	core::requireOpenInterval("AdrLogTimeIntegrator.maxDamping", maxDamping, 0, 2);
+	core::requirePositive("AdrLogTimeIntegrator.divergenceRatio", divergenceRatio);
+	sessionStart = std::chrono::steady_clock::now();
+	nContactsSeen = -1; // masses are recomputed after a load (same values: same stiffness)
+}
+
+double AdrLogTimeIntegrator::wallNow() const
+{
+	return wallBefore + std::chrono::duration<double>(std::chrono::steady_clock::now() - sessionStart).count();
+}
+
+void AdrLogTimeIntegrator::fail(const string& why) const
+{
+	std::ostringstream o;
+	o << "swelldem: AdrLogTimeIntegrator stopped at physical step " << step << "/" << nSteps() << " (t = " << num(step > 0 ? times[step] : tStart)
+	  << " d), ADR iteration " << iterInStep << " of the step (O.iter " << scene->iter << "): " << why
+	  << ". The scene is left as it is; results written so far are kept.";
+	throw std::runtime_error(o.str());
+}
+
+std::vector<ContactKind*> AdrLogTimeIntegrator::kindsInScene() const
+{
+	std::set<ContactKind*> kinds;
+	const auto&            L = scene->interactions->linIntrs;
+	for (size_t i = 0; i < scene->interactions->currSize; ++i)
+		if (L[i]->isReal())
+			if (auto* p = dynamic_cast<SwellPhys*>(L[i]->phys.get())) kinds.insert(p->kind.get());
+	return std::vector<ContactKind*>(kinds.begin(), kinds.end());
+}
+
+long AdrLogTimeIntegrator::breakEvents() const
+{
+	long n = 0;
+	for (ContactKind* k : kindsInScene())
+		n += k->breakEvents;
+	return n;
+}
+
+void AdrLogTimeIntegrator::initialize()
+{
+	postLoad();
+	for (const auto& b : scene->bodies->body)
+		if (b && (b->state->blockedDOFs & kNeed2D) != kNeed2D)
+			throw std::invalid_argument("swelldem: AdrLogTimeIntegrator is a 2D solver: body " + std::to_string(b->id)
+			                            + " must have z translation and x, y rotations blocked (State.blockedDOFs containing 'zXY')");
+	times = core::logTimes(tStart, tEnd, stepsPerDecade, std::vector<double>(extraTimes.begin(), extraTimes.end()));
+	const double shortest = times[1] - times[0];
+	for (ContactKind* k : kindsInScene())
+		k->prepare(shortest, tEnd - tStart);
+	const size_t n = scene->bodies->body.size();
+	initialPos.assign(2 * n, 0.0);
+	for (const auto& b : scene->bodies->body)
+		if (b) {
+			initialPos[2 * b->id]     = b->state->se3.position[0];
+			initialPos[2 * b->id + 1] = b->state->se3.position[1];
+			b->state->vel             = Vector3r::Zero();
+			b->state->angVel          = Vector3r::Zero();
+		}
+	prevForce.assign(3 * n, 0.0);
+	scene->dt      = 1.0;
+	step           = 1;
+	physTime       = tStart;
+	nContactsSeen  = -1;
+	sessionStart   = std::chrono::steady_clock::now();
+	wallBefore     = 0;
+	brokenSeen     = breakEvents();
+	beginPhysicalStep();
+	if (verbose) {
+		std::printf("swelldem: %d physical steps from %s to %s days (%s a decade), ADR tolerance %s\n", nSteps(), num(tStart).c_str(), num(tEnd).c_str(),
+		            num(stepsPerDecade).c_str(), num(tolerance).c_str());
+		std::fflush(stdout);
+	}
+}
+
+void AdrLogTimeIntegrator::beginPhysicalStep()
+{
+	for (ContactKind* k : kindsInScene()) {
+		k->law().beginStep(times[step - 1], times[step]);
+		++k->stepSerial;
+	}
+	iterInStep = 0;
+	for (const auto& b : scene->bodies->body)
+		if (b) b->state->vel = Vector3r::Zero(), b->state->angVel = Vector3r::Zero();
+	std::fill(prevForce.begin(), prevForce.end(), 0.0);
+}
+
+void AdrLogTimeIntegrator::commitPhysicalStep()
+{
+	const auto& L = scene->interactions->linIntrs;
+	for (size_t i = 0; i < scene->interactions->currSize; ++i)
+		if (L[i]->isReal())
+			if (auto* p = dynamic_cast<SwellPhys*>(L[i]->phys.get())) Law2_ScGeom_SwellPhys_AgingSwelling::commit(*p);
+	physTime = times[step];
+	stepIterations.push_back(iterInStep);
+	stepUnbalanced.push_back(unbalanced);
+	stepWall.push_back(wallNow());
+	if (verbose) {
+		const double el = wallNow(), left = el / step * (nSteps() - step);
+		std::printf("swelldem: step %d/%d  t = %s d  ADR iterations %ld (total %ld)  unbalanced %.2e  elapsed %.1f s  left ~%.1f s\n", step, nSteps(),
+		            num(physTime).c_str(), iterInStep, totalIterations, unbalanced, el, left);
+		std::fflush(stdout);
+	}
+	if (step == nSteps()) {
+		finished = true;
+		for (const auto& b : scene->bodies->body)
+			if (b) b->state->vel = Vector3r::Zero(), b->state->angVel = Vector3r::Zero();
+		scene->stopAtIter = scene->iter + 1;
+	} else {
+		++step;
+		beginPhysicalStep();
+	}
+	if (!callback.empty()) {
+		PyGILState_STATE gil = PyGILState_Ensure();
+		try {
+			boost::python::object main = boost::python::import("__main__");
+			boost::python::exec(callback.c_str(), main.attr("__dict__"));
+		} catch (const boost::python::error_already_set&) {
+			PyErr_Print();
+			PyGILState_Release(gil);
+			fail("the callback raised a Python exception (printed above)");
+		}
+		PyGILState_Release(gil);
+	}
+}
+
+void AdrLogTimeIntegrator::computeMasses()
+{
+	// Gershgorin row sums of the contact stiffness in 2D: a contact's relative displacement is
+	// B q with rows n = (-n, 0, n, 0) and t = (-t, -r1, t, -r2) over (u1, theta1, u2, theta2);
+	// |K| row a <= sum_k k_k |B_ka| sum_b |B_kb|.
+	const size_t n = scene->bodies->body.size();
+	massX.assign(n, 0.0), massY.assign(n, 0.0), inertiaZ.assign(n, 0.0);
+	const auto& L = scene->interactions->linIntrs;
+	long        nReal = 0;
+	for (size_t i = 0; i < scene->interactions->currSize; ++i) {
+		const Interaction* I = L[i].get();
+		if (!I->isReal()) continue;
+		++nReal;
+		const auto* g = static_cast<const ScGeom*>(I->geom.get());
+		const auto* p = static_cast<const NormShearPhys*>(I->phys.get());
+		const Vector3r& nn = g->normal;
+		const Real      tx = -nn[1], ty = nn[0];
+		const Real      r1 = g->radius1 - 0.5 * g->penetrationDepth, r2 = g->radius2 - 0.5 * g->penetrationDepth;
+		const Real      rowN = 2 * (std::abs(nn[0]) + std::abs(nn[1])), rowT = 2 * (std::abs(tx) + std::abs(ty)) + r1 + r2;
+		const Real      kn = std::abs(p->kn), ks = std::abs(p->ks);
+		const Real      mx = kn * std::abs(nn[0]) * rowN + ks * std::abs(tx) * rowT;
+		const Real      my = kn * std::abs(nn[1]) * rowN + ks * std::abs(ty) * rowT;
+		for (int side = 0; side < 2; ++side) {
+			const int  id = side == 0 ? I->id1 : I->id2;
+			const Real r  = side == 0 ? r1 : r2;
+			massX[id] += mx;
+			massY[id] += my;
+			inertiaZ[id] += ks * r * rowT;
+		}
+	}
+	const Real f = 0.25 * scene->dt * scene->dt * massSafety;
+	for (size_t i = 0; i < n; ++i)
+		massX[i] *= f, massY[i] *= f, inertiaZ[i] *= f;
+	nContactsSeen = nReal;
+}
+
+void AdrLogTimeIntegrator::action()
+{
+	if (times.empty()) {
+		initialize();
+		return; // contacts set themselves up for step 1 at the next iteration
+	}
+	if (finished) return;
+	scene->forces.sync();
+	++iterInStep;
+	++totalIterations;
+
+	// Unbalanced-force ratio, as YADE's unbalancedForce(): mean resultant on free bodies / mean contact force.
+	const auto& bodies = scene->bodies->body;
+	Real        sumRes = 0, sumContact = 0;
+	long        nFree = 0, nReal = 0;
+	for (const auto& b : bodies) {
+		if (!b || b->isClump()) continue;
+		const State* s = b->state.get();
+		if ((s->blockedDOFs & (State::DOF_X | State::DOF_Y)) == (State::DOF_X | State::DOF_Y)) continue;
+		const Vector3r& f = scene->forces.getForce(b->id);
+		if (!std::isfinite(f[0]) || !std::isfinite(f[1]))
+			fail("non-finite force on body " + std::to_string(b->id) + " (" + num(f[0]) + ", " + num(f[1]) + ") N");
+		Real fx = (s->blockedDOFs & State::DOF_X) ? 0 : f[0], fy = (s->blockedDOFs & State::DOF_Y) ? 0 : f[1];
+		sumRes += std::sqrt(fx * fx + fy * fy);
+		++nFree;
+	}
+	const auto& L = scene->interactions->linIntrs;
+	for (size_t i = 0; i < scene->interactions->currSize; ++i) {
+		const Interaction* I = L[i].get();
+		if (!I->isReal()) continue;
+		++nReal;
+		const auto* p = static_cast<const NormShearPhys*>(I->phys.get());
+		sumContact += (p->normalForce + p->shearForce).norm();
+	}
+	unbalanced = (nFree == 0 || sumContact == 0) ? (sumRes == 0 ? 0.0 : std::numeric_limits<Real>::infinity())
+	                                              : (sumRes / nFree) / (sumContact / nReal);
+	if (!std::isfinite(sumContact)) fail("a contact force is not finite");
+
+	const long breaks    = breakEvents();
+	const bool newBreaks = breaks != brokenSeen;
+	brokenSeen           = breaks;
+	if (newBreaks || nReal != nContactsSeen || iterInStep == 1 || massX.size() != bodies.size()) computeMasses();
+
+	if (iterInStep >= minIterations && !newBreaks && unbalanced <= tolerance) {
+		commitPhysicalStep();
+		return;
+	}
+	if (std::isnan(unbalanced) || unbalanced > divergenceRatio)
+		fail("diverged: unbalanced-force ratio " + num(unbalanced) + " > divergenceRatio " + num(divergenceRatio));
+	if (iterInStep >= maxIterations)
+		fail("no equilibrium after maxIterations = " + std::to_string(maxIterations) + " ADR iterations (unbalanced-force ratio " + num(unbalanced)
+		     + ", tolerance " + num(tolerance) + ")");
+
+	// Damping from the Rayleigh quotient of the local diagonal stiffness estimate (Underwood).
+	const Real dt = scene->dt;
+	Real       num_ = 0, den = 0;
+	for (const auto& b : bodies) {
+		if (!b) continue;
+		const State*    s  = b->state.get();
+		const int       id = b->id;
+		const Vector3r& f  = scene->forces.getForce(id);
+		const Real      x[2] = { s->se3.position[0] - initialPos[2 * id], s->se3.position[1] - initialPos[2 * id + 1] };
+		const Real      m[2] = { massX[id], massY[id] };
+		for (int d = 0; d < 2; ++d) {
+			const Real v = s->vel[d];
+			if (v == 0 || m[d] == 0) continue;
+			const Real kLocal = -(f[d] - prevForce[3 * id + d]) / (dt * v);
+			num_ += x[d] * kLocal * x[d];
+			den += x[d] * m[d] * x[d];
+		}
+	}
+	Real c = (num_ > 0 && den > 0) ? 2 * std::sqrt(num_ / den) : 0;
+	c      = std::min(c, maxDamping / dt);
+	damping = c * dt;
+
+	for (const auto& b : bodies) {
+		if (!b) continue;
+		State*          s  = b->state.get();
+		const int       id = b->id;
+		const Vector3r& f  = scene->forces.getForce(id);
+		const Vector3r& t  = scene->forces.getTorque(id);
+		prevForce[3 * id] = f[0], prevForce[3 * id + 1] = f[1], prevForce[3 * id + 2] = t[2];
+		const Real m[2] = { massX[id], massY[id] };
+		for (int d = 0; d < 2; ++d) {
+			if ((s->blockedDOFs & (d == 0 ? State::DOF_X : State::DOF_Y)) || m[d] == 0) {
+				s->vel[d] = 0;
+				continue;
+			}
+			s->vel[d] = ((2 - c * dt) * s->vel[d] + 2 * dt * f[d] / m[d]) / (2 + c * dt);
+			s->se3.position[d] += dt * s->vel[d];
+		}
+		if (!(s->blockedDOFs & State::DOF_RZ) && inertiaZ[id] > 0) {
+			s->angVel[2] = ((2 - c * dt) * s->angVel[2] + 2 * dt * t[2] / inertiaZ[id]) / (2 + c * dt);
+			s->se3.orientation = Quaternionr(Eigen::AngleAxis<Real>(dt * s->angVel[2], Vector3r::UnitZ())) * s->se3.orientation;
+			s->se3.orientation.normalize();
+		} else
+			s->angVel[2] = 0;
+	}
+}
+
+} // namespace yade

@@ -1,0 +1,30 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Creates SwellPhys for contacts between ConcreteMat particles and assigns the contact kind:
+// mortar-mortar MORTAR; mortar-aggregate or two different aggregates ITZ; one aggregate AGG.
+#pragma once
+#include "ConcreteMat.hpp"
+#include "SwellPhys.hpp"
+
+namespace yade {
+
+class Ip2_ConcreteMat_ConcreteMat_SwellPhys : public IPhysFunctor {
+public:
+#define SWELLDEM_IP2_ATTRS(X)                                                                                                                                  \
+	X(shared_ptr<ContactKind>, mortar, shared_ptr<ContactKind>(), "Kind of mortar-mortar contacts (MORTAR) [-]")                                        \
+	X(shared_ptr<ContactKind>, itz, shared_ptr<ContactKind>(), "Kind of mortar-aggregate and aggregate-aggregate contacts (ITZ) [-]")                   \
+	X(shared_ptr<ContactKind>, agg, shared_ptr<ContactKind>(), "Kind of contacts inside one aggregate (AGG) [-]")                                       \
+	X(Real, thickness, 1.0, "Out-of-plane thickness b of the 2D model; fallback facet area 2 min(r1, r2) b when no Laguerre facet is given [m]")      \
+	X(bool, cohesive, true, "Contacts created while true are intact (bonded); while false they are born broken (compression and friction only) [-]")
+	SWELLDEM_CLASS(Ip2_ConcreteMat_ConcreteMat_SwellPhys, IPhysFunctor,
+	               "Creates SwellPhys between two ConcreteMat particles. The facet area is set to the fallback 2 min(r1, r2) "
+	               "thickness; the mesostructure tools overwrite it with the Laguerre facet area before the first step.",
+	               SWELLDEM_IP2_ATTRS)
+	virtual ~Ip2_ConcreteMat_ConcreteMat_SwellPhys() { }
+	std::string get2DFunctorType1(void) const override { return "ConcreteMat"; }
+	std::string get2DFunctorType2(void) const override { return "ConcreteMat"; }
+	void        go(const shared_ptr<Material>& m1, const shared_ptr<Material>& m2, const shared_ptr<Interaction>& I) override;
+	void        postLoad();
+	template <class C> static void pyMethods(C&) { }
+};
+
+} // namespace yade
