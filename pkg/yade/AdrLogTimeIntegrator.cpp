@@ -33,6 +33,7 @@ void AdrLogTimeIntegrator::postLoad()
 	core::require(massSafety >= 1, "AdrLogTimeIntegrator.massSafety", massSafety, ">= 1");
 	core::requireOpenInterval("AdrLogTimeIntegrator.maxDamping", maxDamping, 0, 2);
 	core::requirePositive("AdrLogTimeIntegrator.divergenceRatio", divergenceRatio);
+	core::requireOpenInterval("AdrLogTimeIntegrator.relativeForceFloor", relativeForceFloor, 0, 1);
 	sessionStart = std::chrono::steady_clock::now();
 	nContactsSeen = -1; // masses are recomputed after a load (same values: same stiffness)
 }
@@ -224,10 +225,19 @@ void AdrLogTimeIntegrator::action()
 		if (!I->isReal()) continue;
 		++nReal;
 		const auto* p = static_cast<const NormShearPhys*>(I->phys.get());
-		sumContact += (p->normalForce + p->shearForce).norm();
+		Real        F = (p->normalForce + p->shearForce).norm();
+		// A contact that the step loads through its own offset (swelling, creep) counts at least
+		// with that load: free swelling ends with zero contact forces, not with a zero ratio.
+		if (const auto* sp = dynamic_cast<const SwellPhys*>(p)) F = std::max(F, std::abs(sp->kn * sp->duOffsetN) + std::abs(sp->ks * sp->duOffsetS));
+		sumContact += F;
 	}
-	unbalanced = (nFree == 0 || sumContact == 0) ? (sumRes == 0 ? 0.0 : std::numeric_limits<Real>::infinity())
-	                                              : (sumRes / nFree) / (sumContact / nReal);
+	// Steps that load the contacts by almost nothing (late swelling) are judged against a floor,
+	// a fraction of the largest mean contact force of the run, not against round-off.
+	Real meanContact = nReal > 0 ? sumContact / nReal : 0;
+	forceScaleMax    = std::max(forceScaleMax, meanContact);
+	meanContact      = std::max(meanContact, relativeForceFloor * forceScaleMax);
+	unbalanced       = (nFree == 0 || meanContact == 0) ? (sumRes == 0 ? 0.0 : std::numeric_limits<Real>::infinity())
+	                                                    : (sumRes / nFree) / meanContact;
 	if (!std::isfinite(sumContact)) fail("a contact force is not finite");
 
 	const long breaks    = breakEvents();

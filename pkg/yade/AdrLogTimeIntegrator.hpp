@@ -18,12 +18,15 @@ public:
 	X(Real, tEnd, 3650.0, "Last physical time [day]")                                                                                                     \
 	X(Real, stepsPerDecade, 10, "Physical steps per decade of log time [1/decade]")                                                                     \
 	X(std::vector<Real>, extraTimes, std::vector<Real>(), "Additional physical times to stop at (e.g. output times) [day]")                             \
-	X(Real, tolerance, 1e-4, "Equilibrium when the unbalanced-force ratio (mean resultant force on free bodies / mean contact force) is below [-]")    \
+	X(Real, tolerance, 1e-4, "Equilibrium when the unbalanced-force ratio is below: mean resultant force on free bodies / mean contact force, a contact "  \
+	                                "counting at least with the load its step offset imposes, kn'' |du''| + ks'' |du_s''| [-]")    \
 	X(long, minIterations, 2, "ADR iterations per physical step at least [-]")                                                                          \
 	X(long, maxIterations, 200000, "ADR iterations per physical step at most; beyond, the run stops with a message [-]")                               \
 	X(Real, massSafety, 1.0, "Factor on the Gershgorin bound of the fictitious masses (>= 1) [-]")                                                     \
 	X(Real, maxDamping, 1.8, "Upper clamp of the ADR damping c dt (< 2) [-]")                                                                          \
 	X(Real, divergenceRatio, 1e6, "An unbalanced-force ratio above this (or NaN) stops the run as diverged [-]")                                      \
+	X(Real, relativeForceFloor, 1e-3, "The mean contact force of the ratio is at least this fraction of its largest value in the run [-]")      \
+	X(Real, forceScaleMax, 0.0, "Largest mean contact force of the run so far [N] (internal)")                                                   \
 	X(bool, verbose, true, "Print a progress line per physical step [-]")                                                                             \
 	X(string, callback, "", "Python code run after every converged physical step (in __main__) [-]")                                                  \
 	X(std::vector<Real>, times, std::vector<Real>(), "Physical times of the run, tStart first (set at the first iteration) [day]")                    \
