@@ -87,6 +87,27 @@ Real ContactKind::modulus(Real t) const
 	return core::B3Compliance(p).E(t);
 }
 
+std::vector<Real>
+ContactKind::evaluateHistory(const std::vector<Real>& times, const std::vector<Real>& openings, Real area, Real length, Real swellDispInf) const
+{
+	core::require(times.size() >= 2, "ContactKind.evaluateHistory: len(times)", double(times.size()), ">= 2");
+	core::require(openings.size() == times.size(), "ContactKind.evaluateHistory: len(openings)", double(openings.size()), "len(times)");
+	core::ContactLaw      law(params(), times[1] - times[0], times.back() - times.front());
+	core::ContactGeometry g;
+	g.area = area, g.length = length, g.swellingDisplacementInf = swellDispInf;
+	core::ContactState s;
+	law.initState(s);
+	std::vector<Real> F(1, 0.0);
+	for (size_t i = 1; i < times.size(); ++i) {
+		law.beginStep(times[i - 1], times[i]);
+		law.beginContactStep(g, s);
+		law.trial(g, s, openings[i] - openings[i - 1], 0.0);
+		law.commit(g, s);
+		F.push_back(s.committed.Fn);
+	}
+	return F;
+}
+
 int ContactKind::chainSize() { return law().creep() ? int(law().creep()->size()) : 0; }
 
 } // namespace yade

@@ -48,6 +48,12 @@ public:
 		cls.def("compliance", &ContactKind::compliance, "B3 J(t, t') of the kind's q's, t and t' in days [1/Pa].");
 		cls.def("modulus", &ContactKind::modulus, "Modulus of the kind at age t [day]: young, or E(t) = 1/J(t + 0.01, t) for aging kinds [Pa].");
 		cls.def("chainSize", &ContactKind::chainSize, "Number of Kelvin units per direction of the prepared law (0 unless viscoelastic) [-].");
+		cls.def("evaluateHistory", &ContactKind::evaluateHistory,
+		        (boost::python::arg("times"), boost::python::arg("openings"), boost::python::arg("area"), boost::python::arg("length"),
+		         boost::python::arg("swellDispInf") = -1.0),
+		        "One contact of this kind alone, outside any scene: the physics core driven through physical times [day] "
+		        "with imposed normal openings [m] (one per time, times[0] the stress-free state), facet area [m2] and length [m]; "
+		        "returns the normal force [N] at each time (tension positive).");
 	}
 
 	// --- runtime, not serialized
@@ -61,6 +67,7 @@ public:
 	Real compliance(Real t, Real tPrime) const;
 	Real modulus(Real t) const;
 	int  chainSize();
+	std::vector<Real> evaluateHistory(const std::vector<Real>& times, const std::vector<Real>& openings, Real area, Real length, Real swellDispInf) const;
 
 private:
 	std::unique_ptr<swelldem::core::ContactLaw> law_;

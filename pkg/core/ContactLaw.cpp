@@ -1,0 +1,128 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "core/ContactLaw.hpp"
+
+#include "core/Validate.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace swelldem::core {
+
+ContactLaw::ContactLaw(const ContactKindParams& p, double shortestLag, double longestLag) : p_(p)
+{
+    p_.validate();
+    if (p_.behaviour != Behaviour::Elastic) b3_ = std::make_unique<B3Compliance>(p_.b3);
+    if (p_.behaviour == Behaviour::Viscoelastic)
+        creep_ = std::make_unique<SolidificationCreep>(p_.b3, shortestLag, longestLag, p_.chain, p_.interiorTime);
+    if (p_.swelling)
+        kinetics_ = std::make_unique<SwellingKinetics>(p_.tauC, p_.tauL, p_.referenceTemperature, p_.Uc, p_.UL);
+}
+
+std::size_t ContactLaw::hiddenStateSize() const { return creep_ ? 2 * creep_->size() : 0; }
+
+void ContactLaw::initState(ContactState& s) const
+{
+    s = ContactState{};
+    s.gamma.assign(hiddenStateSize(), 0.0);
+}
+
+void ContactLaw::setTemperatureHistory(std::vector<double> times, std::vector<double> temperatures)
+{
+    if (kinetics_ && !times.empty()) kinetics_->integrate(0.0, 0.0, 0.0, times, temperatures);  // validates
+    tempTimes_ = std::move(times);
+    tempValues_ = std::move(temperatures);
+    xiTime_ = 0;
+    xiValue_ = 0;
+}
+
+void ContactLaw::beginStep(double tPrev, double t)
+{
+    if (p_.behaviour == Behaviour::Elastic) requireNonNegative("tPrev [day]", tPrev);
+    else requirePositive("tPrev [day]", tPrev);
+    requireGreaterEqual("t [day]", t, "tPrev", tPrev);
+    tPrev_ = tPrev;
+    t_ = t;
+    switch (p_.behaviour) {
+    case Behaviour::Elastic: stepModulus_ = p_.contactModulus; break;
+    case Behaviour::AgingElastic:
+        stepModulus_ = b3_->E(SolidificationCreep::interiorTime(p_.interiorTime, tPrev, t));
+        break;
+    case Behaviour::Viscoelastic:
+        creep_->factors(tPrev, t, factors_);
+        stepModulus_ = factors_.Epp();
+        break;
+    }
+    dxi_ = 0;
+    if (!kinetics_) return;  // non-swelling kinds never evaluate the sigmoid
+    ++swellingEvaluations_;
+    if (tempTimes_.empty()) {
+        dxi_ = kinetics_->increment(tPrev, t);
+    } else {
+        if (xiTime_ != tPrev) {  // not continuing the last step: integrate from t = 0
+            xiValue_ = kinetics_->integrate(0.0, 0.0, tPrev, tempTimes_, tempValues_);
+            xiTime_ = tPrev;
+        }
+        const double xiNew = kinetics_->integrate(xiValue_, tPrev, t, tempTimes_, tempValues_);
+        dxi_ = xiNew - xiValue_;
+        xiValue_ = xiNew;
+        xiTime_ = t;
+    }
+}
+
+double ContactLaw::swellingDisplacementInf(const ContactGeometry& g) const
+{
+    if (!p_.swelling) return 0;
+    if (g.swellingDisplacementInf >= 0) return g.swellingDisplacementInf;
+    return p_.swellingStrainInf > 0 ? p_.swellingStrainInf * g.length : p_.swellingDisplacementInf;
+}
+
+void ContactLaw::beginContactStep(const ContactGeometry& g, ContactState& s) const
+{
+    g.validate();
+    const double A = g.area, L = g.length, alpha = p_.shearRatio;
+    s.kn = stepModulus_ * A / L;
+    s.ks = alpha * s.kn;
+    s.duOffsetN = kinetics_ ? swellingDisplacementInf(g) * dxi_ : 0.0;
+    s.duOffsetS = 0;
+    if (creep_) {
+        require(s.gamma.size() == hiddenStateSize(), "hidden state size", static_cast<double>(s.gamma.size()),
+                std::to_string(hiddenStateSize()) + " (call ContactLaw::initState)");
+        const double sigmaN = s.committed.Fn / A;
+        const double sigmaS = s.committed.Fs / (alpha * A);
+        s.duOffsetN += L * SolidificationCreep::inelasticStrainIncrement(factors_, sigmaN, s.gammaNormal());
+        s.duOffsetS += L * SolidificationCreep::inelasticStrainIncrement(factors_, sigmaS, s.gammaShear());
+    }
+    s.trial = s.committed;
+}
+
+const ContactForces& ContactLaw::trial(const ContactGeometry& g, ContactState& s, double duN, double duS) const
+{
+    ContactForces& tr = s.trial;
+    const double FnHat = s.committed.FnHat + s.kn * (duN - s.duOffsetN);
+    const double FsTrial = s.committed.Fs + s.ks * (duS - s.duOffsetS);
+    tr.FnHat = FnHat;
+    if (!tr.broken) {
+        tr.Fn = FnHat;
+        tr.Fs = FsTrial;
+        const FailureMode m = BrittleContact::check(p_.strength, g.area, FnHat, FsTrial);
+        if (m == FailureMode::None) return tr;
+        tr.broken = true;
+        tr.mode = m;
+    }
+    BrittleContact::brokenForces(p_.strength, FnHat, FsTrial, tr.Fn, tr.Fs);
+    return tr;
+}
+
+void ContactLaw::commit(const ContactGeometry& g, ContactState& s) const
+{
+    if (creep_) {
+        const double A = g.area, alpha = p_.shearRatio;
+        const double sN = s.committed.Fn / A, dsN = (s.trial.Fn - s.committed.Fn) / A;
+        const double sS = s.committed.Fs / (alpha * A), dsS = (s.trial.Fs - s.committed.Fs) / (alpha * A);
+        SolidificationCreep::commit(factors_, sN, dsN, s.gammaNormal());
+        SolidificationCreep::commit(factors_, sS, dsS, s.gammaShear());
+    }
+    s.committed = s.trial;
+}
+
+}  // namespace swelldem::core

@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Constitutive law of one contact kind, evaluated contact by contact (the YADE adapter and the
+// tests use it the same way). One physical step [tPrev, t]:
+//   law.beginStep(tPrev, t);                      // once per kind: shared factors, E(t*), dxi
+//   for each contact: law.beginContactStep(g, s); // once per contact: kn'', ks'', offsets
+//   equilibrium iterations: law.trial(g, s, duN, duS)   // displacement increments since step start
+//   converged: for each contact law.commit(g, s);
+// Convention: tension positive, opening displacement positive, kn = E A / L, ks = alpha kn;
+// creep works in sigma = Fn/A, eps = u/L (normal) and sigma_s = Fs/(alpha A), eps_s = u_s/L (shear).
+//   Fn = Fn_committed + kn'' (duN - du''_n - du_sw),  Fs = Fs_committed + ks'' (duS - du''_s).
+// "A scene pays only for what it uses": Elastic and AgingElastic kinds allocate no Kelvin state,
+// non-swelling kinds never evaluate the sigmoid, damage off makes no strength check.
+#pragma once
+
+#include "core/ContactGeometry.hpp"
+#include "core/ContactKindParams.hpp"
+#include "core/ContactState.hpp"
+#include "core/SolidificationCreep.hpp"
+#include "core/SwellingKinetics.hpp"
+
+#include <memory>
+#include <vector>
+
+namespace swelldem::core {
+
+class ContactLaw {
+public:
+    /// shortestLag, longestLag [day]: the chain range of Viscoelastic kinds (shortest physical
+    /// step, analysis span; see KelvinChain::forAnalysis). Ignored by the other kinds.
+    explicit ContactLaw(const ContactKindParams& p, double shortestLag = 1e-2, double longestLag = 1e5);
+
+    const ContactKindParams& params() const { return p_; }
+    /// Doubles of hidden state per contact (2 x chain size for Viscoelastic, else 0).
+    std::size_t hiddenStateSize() const;
+    /// The creep model (nullptr unless Viscoelastic).
+    const SolidificationCreep* creep() const { return creep_.get(); }
+    /// Resets a contact's state (forces zero, intact) and sizes its hidden array.
+    void initState(ContactState& s) const;
+
+    /// Temperature history for the swelling kinetics (piecewise linear, times [day], T [K]);
+    /// without one the kinetics run at the reference temperature in closed form.
+    void setTemperatureHistory(std::vector<double> times, std::vector<double> temperatures);
+
+    /// Per-kind step set-up; requires t >= tPrev, and tPrev > 0 for aging kinds [day].
+    void beginStep(double tPrev, double t);
+    double stepStart() const { return tPrev_; }
+    double stepEnd() const { return t_; }
+    /// Modulus of the step: E_c, E(t*) or the incremental E'' [Pa].
+    double stepModulus() const { return stepModulus_; }
+    /// Swelling ratio increment xi(t) - xi(tPrev) of the step (0 for non-swelling kinds).
+    double swellingIncrement() const { return dxi_; }
+    /// Step factors of a Viscoelastic kind (valid after beginStep), else nullptr.
+    const StepFactors* stepFactors() const { return creep_ ? &factors_ : nullptr; }
+    /// How many times the sigmoid/ODE was evaluated (for the "pays for what it uses" tests).
+    long swellingEvaluations() const { return swellingEvaluations_; }
+
+    /// Ultimate swelling displacement of a contact [m].
+    double swellingDisplacementInf(const ContactGeometry& g) const;
+
+    /// Per-contact step set-up (after beginStep): stiffnesses and constant offsets; trial := committed.
+    void beginContactStep(const ContactGeometry& g, ContactState& s) const;
+    /// Trial forces for displacement increments since the step start [m]; strength checks;
+    /// a break is kept for the rest of the step. Returns s.trial.
+    const ContactForces& trial(const ContactGeometry& g, ContactState& s, double duN, double duS) const;
+    /// Converged step: updates the hidden strains from the transmitted force increments and
+    /// copies trial into committed.
+    void commit(const ContactGeometry& g, ContactState& s) const;
+
+private:
+    ContactKindParams p_;
+    std::unique_ptr<SolidificationCreep> creep_;
+    std::unique_ptr<B3Compliance> b3_;
+    std::unique_ptr<SwellingKinetics> kinetics_;
+    std::vector<double> tempTimes_, tempValues_;
+    StepFactors factors_;
+    double tPrev_ = 0, t_ = 0, stepModulus_ = 0, dxi_ = 0;
+    double xiTime_ = 0, xiValue_ = 0;  // ODE state with a temperature history
+    long swellingEvaluations_ = 0;
+};
+
+}  // namespace swelldem::core
