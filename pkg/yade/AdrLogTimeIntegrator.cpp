@@ -206,7 +206,7 @@ void AdrLogTimeIntegrator::action()
 
 	// Unbalanced-force ratio, as YADE's unbalancedForce(): mean resultant on free bodies / mean contact force.
 	const auto& bodies = scene->bodies->body;
-	Real        sumRes = 0, sumContact = 0;
+	Real        sumRes = 0, sumContact = 0, sumKn = 0, posScale = 0;
 	long        nFree = 0, nReal = 0;
 	for (const auto& b : bodies) {
 		if (!b || b->isClump()) continue;
@@ -217,6 +217,7 @@ void AdrLogTimeIntegrator::action()
 			fail("non-finite force on body " + std::to_string(b->id) + " (" + num(f[0]) + ", " + num(f[1]) + ") N");
 		Real fx = (s->blockedDOFs & State::DOF_X) ? 0 : f[0], fy = (s->blockedDOFs & State::DOF_Y) ? 0 : f[1];
 		sumRes += std::sqrt(fx * fx + fy * fy);
+		posScale = std::max(posScale, s->se3.position.head<2>().cwiseAbs().maxCoeff());
 		++nFree;
 	}
 	const auto& L = scene->interactions->linIntrs;
@@ -226,6 +227,7 @@ void AdrLogTimeIntegrator::action()
 		++nReal;
 		const auto* p = static_cast<const NormShearPhys*>(I->phys.get());
 		Real        F = (p->normalForce + p->shearForce).norm();
+		sumKn += std::abs(p->kn);
 		// A contact that the step loads through its own offset (swelling, creep) counts at least
 		// with that load: free swelling ends with zero contact forces, not with a zero ratio.
 		if (const auto* sp = dynamic_cast<const SwellPhys*>(p)) F = std::max(F, std::abs(sp->kn * sp->duOffsetN) + std::abs(sp->ks * sp->duOffsetS));
@@ -240,12 +242,16 @@ void AdrLogTimeIntegrator::action()
 	                                                    : (sumRes / nFree) / meanContact;
 	if (!std::isfinite(sumContact)) fail("a contact force is not finite");
 
+	// Below this residual positions cannot resolve a better equilibrium (their round-off times the
+	// stiffness): a step loaded by next to nothing converges there instead of never.
+	const bool atRoundOff = nReal > 0 && nFree > 0 && sumRes / nFree <= 256 * std::numeric_limits<Real>::epsilon() * posScale * sumKn / nReal;
+
 	const long breaks    = breakEvents();
 	const bool newBreaks = breaks != brokenSeen;
 	brokenSeen           = breaks;
 	if (newBreaks || nReal != nContactsSeen || iterInStep == 1 || massX.size() != bodies.size()) computeMasses();
 
-	if (iterInStep >= minIterations && !newBreaks && unbalanced <= tolerance) {
+	if (iterInStep >= minIterations && !newBreaks && (unbalanced <= tolerance || atRoundOff)) {
 		commitPhysicalStep();
 		return;
 	}

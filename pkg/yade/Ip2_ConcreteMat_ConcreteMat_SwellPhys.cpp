@@ -30,7 +30,11 @@ void Ip2_ConcreteMat_ConcreteMat_SwellPhys::go(const shared_ptr<Material>& m1, c
 	p->ks                     = kind->shearRatio * p->kn;
 	p->tangensOfFrictionAngle = std::tan(kind->residualFrictionAngle);
 	p->gamma.assign(law.hiddenStateSize(), 0.0);
-	if (!cohesive) p->broken = p->committedBroken = true;
+	if (!cohesive) {
+		// A contact made during the run is cohesionless and stress-free when the discs just touch.
+		p->broken = p->committedBroken = true;
+		p->uRef = p->uTrial = 0;
+	}
 	I->phys = p;
 }
 

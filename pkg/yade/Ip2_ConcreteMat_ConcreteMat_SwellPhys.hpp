@@ -14,7 +14,8 @@ public:
 	X(shared_ptr<ContactKind>, itz, shared_ptr<ContactKind>(), "Kind of mortar-aggregate and aggregate-aggregate contacts (ITZ) [-]")                   \
 	X(shared_ptr<ContactKind>, agg, shared_ptr<ContactKind>(), "Kind of contacts inside one aggregate (AGG) [-]")                                       \
 	X(Real, thickness, 1.0, "Out-of-plane thickness b of the 2D model; fallback facet area 2 min(r1, r2) b when no Laguerre facet is given [m]")      \
-	X(bool, cohesive, true, "Contacts created while true are intact (bonded); while false they are born broken (compression and friction only) [-]")
+	X(bool, cohesive, true, "Contacts created while true are intact (bonded) and stress-free as created; while false they are born broken "   \
+	                             "(compression and friction only) and stress-free when the discs just touch [-]")
 	SWELLDEM_CLASS(Ip2_ConcreteMat_ConcreteMat_SwellPhys, IPhysFunctor,
 	               "Creates SwellPhys between two ConcreteMat particles. The facet area is set to the fallback 2 min(r1, r2) "
 	               "thickness; the mesostructure tools overwrite it with the Laguerre facet area before the first step.",

@@ -13,7 +13,7 @@ sys.path.insert(0, os.path.join(REPO, "py"))
 
 
 def build_dir():
-    return os.environ.get("SWELLDEM_BUILD_DIR") or os.path.join(REPO, "build")
+    return os.path.abspath(os.environ.get("SWELLDEM_BUILD_DIR") or os.path.join(REPO, "build"))
 
 
 class YadeRun:

@@ -1,0 +1,69 @@
+/* SPDX-License-Identifier: GPL-2.0-or-later */
+/*
+ * swelldem_geom: C API of the YADE-free 2D geometry library of swelldem.
+ *
+ * Lengths are in any consistent unit (the Python side passes millimetres);
+ * areas are in that unit squared. Every function returns a negative value on
+ * error and then swd_geom_last_error() gives a message (per thread).
+ */
+#ifndef SWELLDEM_GEOM_H
+#define SWELLDEM_GEOM_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define SWD_API __attribute__((visibility("default")))
+
+/* Version string of the library, e.g. "0.1.0". */
+SWD_API const char* swd_geom_version(void);
+
+/* Message of the last error raised in this thread ("" if none). */
+SWD_API const char* swd_geom_last_error(void);
+
+/*
+ * Compact random packing of non-overlapping discs in the rectangle [0,W]x[0,H],
+ * radii drawn uniformly in [rmin, rmax] from a generator seeded with `seed`.
+ * Constructive advancing-front algorithm: every disc is tangent to two objects
+ * already placed (discs or walls). Writes at most `capacity` discs to x, y, r.
+ * stats (may be NULL) receives 8 doubles:
+ *   [0] packing density (disc area / W H), [1] number of discs,
+ *   [2] placements abandoned on the front, [3] discs added by the top-fill pass,
+ *   [4] number of front collapses, [5] max overlap found by the final check
+ *   (relative to rmax; <= 0 means none), [6] discs whose radius had to be
+ *   enlarged to bridge a front gap, [7] reserved (0).
+ * Returns the number of discs (>= 0) or -1 (bad argument, capacity too small).
+ * A safe capacity is floor(W H / (pi rmin^2)) + 16.
+ */
+SWD_API long swd_pack_rectangle(double width, double height, double rmin, double rmax,
+                                unsigned long long seed, long capacity,
+                                double* x, double* y, double* r, double* stats);
+
+/*
+ * Laguerre (power) diagram of n discs (weights r^2) with CGAL's 2D regular
+ * triangulation, each cell clipped to the rectangle [0,W]x[0,H].
+ * Outputs:
+ *   cell_area[n]      area of every clipped cell;
+ *   facets (at most `capacity` of them; 3 n is always enough): for every pair
+ *   i < j whose clipped cells share an edge of positive length:
+ *   fi[k], fj[k]      the two disc indices,
+ *   flen[k]           edge length (mean of the lengths seen from both cells),
+ *   fseg[4k..4k+3]    edge end points x1, y1, x2, y2.
+ * stats (may be NULL) receives 8 doubles:
+ *   [0] sum of cell areas, [1] max |length seen from i - length seen from j|
+ *   over all facets, [2] number of hidden discs (empty cells; 0 for
+ *   non-overlapping discs), [3] triangulation dimension,
+ *   [4] number of neighbour pairs of the triangulation, [5] number of those whose
+ *   clipped edge had zero length, [6] length threshold used for "zero",
+ *   [7] reserved (0).
+ * Returns the number of facets (>= 0) or -1.
+ */
+SWD_API long swd_laguerre_rectangle(long n, const double* x, const double* y, const double* r,
+                                    double width, double height, long capacity,
+                                    int* fi, int* fj, double* flen, double* fseg,
+                                    double* cell_area, double* stats);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
