@@ -72,20 +72,9 @@ core::ContactLaw& ContactKind::law()
 	return *law_;
 }
 
-Real ContactKind::compliance(Real t, Real tPrime) const
-{
-	core::B3Params p;
-	p.q1 = q1, p.q2 = q2, p.q3 = q3, p.q4 = q4;
-	return core::B3Compliance(p).J(t, tPrime);
-}
+Real ContactKind::compliance(Real t, Real tPrime) const { return core::B3Compliance(params().b3).J(t, tPrime); }
 
-Real ContactKind::modulus(Real t) const
-{
-	if (behaviour == "elastic") return young;
-	core::B3Params p;
-	p.q1 = q1, p.q2 = q2, p.q3 = q3, p.q4 = q4;
-	return core::B3Compliance(p).E(t);
-}
+Real ContactKind::modulus(Real t) const { return behaviour == "elastic" ? young : core::B3Compliance(params().b3).E(t); }
 
 std::vector<Real>
 ContactKind::evaluateHistory(const std::vector<Real>& times, const std::vector<Real>& openings, Real area, Real length, Real swellDispInf) const
