@@ -99,6 +99,7 @@ void AdrLogTimeIntegrator::initialize()
 	wallBefore     = 0;
 	brokenSeen     = breakEvents();
 	beginPhysicalStep();
+	rebeginStep = false;
 	if (verbose) {
 		std::printf("swelldem: %d physical steps from %s to %s days (%s a decade), ADR tolerance %s\n", nSteps(), num(tStart).c_str(), num(tEnd).c_str(),
 		            num(stepsPerDecade).c_str(), num(tolerance).c_str());
@@ -200,6 +201,11 @@ void AdrLogTimeIntegrator::action()
 		return; // contacts set themselves up for step 1 at the next iteration
 	}
 	if (finished) return;
+	if (rebeginStep) {
+		for (ContactKind* k : kindsInScene())
+			k->law().beginStep(times[step - 1], times[step]);
+		rebeginStep = false;
+	}
 	scene->forces.sync();
 	++iterInStep;
 	++totalIterations;

@@ -71,6 +71,7 @@ private:
 	[[noreturn]] void         fail(const string& why) const;
 	double                    wallNow() const;
 	std::chrono::steady_clock::time_point sessionStart = std::chrono::steady_clock::now();
+	bool rebeginStep = true; // the kinds' laws are not serialized: begin the current step again after O.load
 };
 
 } // namespace yade

@@ -52,6 +52,8 @@ void ContactKind::postLoad()
 void ContactKind::prepare(Real shortestLag, Real longestLag)
 {
 	std::lock_guard<std::mutex> lock(lawMutex_);
+	this->shortestLag = shortestLag;
+	this->longestLag  = longestLag;
 	try {
 		law_ = std::make_unique<core::ContactLaw>(params(), shortestLag, longestLag);
 	} catch (const std::invalid_argument& e) {
@@ -64,7 +66,7 @@ core::ContactLaw& ContactKind::law()
 	if (!law_) {
 		std::lock_guard<std::mutex> lock(lawMutex_);
 		if (!law_) {
-			law_ = std::make_unique<core::ContactLaw>(params(), 1e-2, 1e5);
+			law_ = std::make_unique<core::ContactLaw>(params(), shortestLag, longestLag);
 			// Without the log-time integrator there is one open-ended step at age 28 days.
 			law_->beginStep(28.0, 28.0);
 		}

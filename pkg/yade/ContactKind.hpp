@@ -35,7 +35,10 @@ public:
 	X(Real, cohesion, 0.0, "Cohesion c of intact contacts [Pa]")                                                                                           \
 	X(Real, frictionAngle, 0.5, "Friction angle phi of intact contacts [rad]")                                                                            \
 	X(Real, residualFrictionAngle, 0.5, "Friction angle of broken (cohesionless Coulomb) contacts [rad]")                                              \
-	X(long, breakEvents, 0, "Contacts of this kind broken so far [-]")
+	X(long, breakEvents, 0, "Contacts of this kind broken so far [-]") \
+	X(long, stepSerial, 0, "Physical step counter; a contact sets itself up for a step when its own differs (internal) [-]") \
+	X(Real, shortestLag, 1e-2, "Shortest load duration the Kelvin chain resolves (set by AdrLogTimeIntegrator: first step) [day]") \
+	X(Real, longestLag, 1e5, "Longest load duration the Kelvin chain resolves (set by AdrLogTimeIntegrator: the run span) [day]")
 	SWELLDEM_CLASS(ContactKind, Serializable,
 	               "Parameters shared by all contacts of one kind (MORTAR, ITZ or AGG): stiffness, aging viscoelasticity (B3), "
 	               "swelling kinetics (Larive) and brittle strength.",
@@ -62,8 +65,6 @@ public:
 	void prepare(Real shortestLag, Real longestLag);
 	/// The core law; built with default lags on first use if the integrator has not prepared it.
 	swelldem::core::ContactLaw& law();
-	/// Incremented at every physical step; contacts set themselves up for a step when theirs differs.
-	long stepSerial = 0;
 	Real compliance(Real t, Real tPrime) const;
 	Real modulus(Real t) const;
 	int  chainSize();

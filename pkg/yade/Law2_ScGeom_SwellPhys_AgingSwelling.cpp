@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "Law2_ScGeom_SwellPhys_AgingSwelling.hpp"
 #include "core/BrittleContact.hpp"
+#include <algorithm>
 #include <cmath>
 
 namespace yade {
@@ -21,9 +22,10 @@ void Law2_ScGeom_SwellPhys_AgingSwelling::beginContactStep(SwellPhys& p, const V
 	ContactKind&      kind = *p.kind;
 	core::ContactLaw& law  = kind.law();
 	if (p.gamma.size() != law.hiddenStateSize()) {
-		// The chain is sized when the integrator prepares the kinds; a contact that has not
-		// yet lived through a step takes the new size, one with history cannot.
-		if (p.stepSerial >= 0)
+		// The chain is sized when the integrator prepares the kinds; a contact without history
+		// (nothing committed yet) takes the new size, one with history cannot.
+		const bool history = p.committedFn != 0 || p.committedFs != 0 || std::any_of(p.gamma.begin(), p.gamma.end(), [](Real g) { return g != 0; });
+		if (history)
 			throw std::runtime_error("swelldem: contact of kind " + kind.name + " has " + std::to_string(p.gamma.size())
 			                         + " hidden creep variables, its kind now needs " + std::to_string(law.hiddenStateSize())
 			                         + " (the kind's Kelvin chain changed during the run)");
