@@ -35,7 +35,6 @@ void AdrLogTimeIntegrator::postLoad()
 	core::requirePositive("AdrLogTimeIntegrator.divergenceRatio", divergenceRatio);
 	core::requireOpenInterval("AdrLogTimeIntegrator.relativeForceFloor", relativeForceFloor, 0, 1);
 	sessionStart = std::chrono::steady_clock::now();
-	nContactsSeen = -1; // masses are recomputed after a load (same values: same stiffness)
 }
 
 double AdrLogTimeIntegrator::wallNow() const

@@ -128,6 +128,7 @@ public:                                                                         
 	{                                                                                                                                                      \
 		ar& boost::serialization::make_nvp(#Base, boost::serialization::base_object<Base>(*this));                                                     \
 		ATTRS(SWELLDEM_ATTR_SERIALIZE)                                                                                                                 \
+		if (Archive::is_loading::value) postLoad(); /* as YADE's classes: validate and rebuild transient state on load */                           \
 	}
 
 // A class YADE dispatches on (an IPhys, a Material) needs its own index in its family.
