@@ -24,8 +24,9 @@ def contact_kind(name, behaviour="elastic", young=30e9, b3="mortar", shear_ratio
         raise ValueError(f"swelldem: kinetics = {kinetics!r} is out of range; allowed: {', '.join(KINETICS)}")
     q1, q2, q3, q4 = (q * 1e-12 for q in PAPER_B3[b3])
     tau_c, tau_l, _ = KINETICS[kinetics]
+    swelling = bool(extra.pop("swelling", False)) or swell_disp_inf > 0  # a kind may swell through per-contact overrides only
     return yade.wrapper.ContactKind(name=name, kindId=KIND_IDS.get(name, 3), behaviour=behaviour, young=young, shearRatio=shear_ratio,
-                                    q1=q1, q2=q2, q3=q3, q4=q4, swelling=swell_disp_inf > 0 or extra.pop("swelling", False),
+                                    q1=q1, q2=q2, q3=q3, q4=q4, swelling=swelling,
                                     swellDispInf=swell_disp_inf, tauC=tau_c, tauL=tau_l, damage=damage,
                                     tensileStrength=tensile_strength, **extra)
 

@@ -1,0 +1,151 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""Tables (Markdown, CSV) and plots (PNG) of swelling tests, in the form of the paper's tables
+and figures. Plain Python: it reads results.json dictionaries (and, for the crack map, the list
+of broken contacts with the assembly's facet segments)."""
+import csv
+import math
+import os
+
+import numpy as np
+
+KIND_NAMES = ("MORTAR", "ITZ", "AGG")
+LABEL = {"isr": "ISR", "asr-fine": "ASR-fine agg.", "asr-coarse": "ASR-coarse agg."}
+COLORS = {"MORTAR": "tab:blue", "ITZ": "tab:red", "AGG": "tab:green"}
+
+
+def _plt():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return plt
+
+
+def final_rows(res):
+    """Per kind at the last step: 5 % and 95 % normal-force quantiles [kN], broken contacts and their share."""
+    rows = []
+    for name in KIND_NAMES:
+        d = res["per_kind"][name]
+        n = res["n_contacts_by_kind"].get(name, 0)
+        broken = d["broken"][-1] if d["broken"] else 0
+        rows.append({"kind": name, "n_contacts": n,
+                     "fn_p05_kN": d["fn_p05_kN"][-1] if d["fn_p05_kN"] else float("nan"),
+                     "fn_p95_kN": d["fn_p95_kN"][-1] if d["fn_p95_kN"] else float("nan"),
+                     "broken": broken, "broken_pct": 100.0 * broken / n if n else float("nan")})
+    return rows
+
+
+def write_tables(out, res):
+    """table.md and table.csv in the form of the paper's Tables 3.4 / 3.6."""
+    rows = final_rows(res)
+    with open(os.path.join(out, "table.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    t = res["times_days"][-1] if res["times_days"] else float("nan")
+    lines = [f"# {LABEL.get(res['scenario'], res['scenario'])}, {res['behaviour']}, damage {'on' if res['damage'] else 'off'}: "
+             f"normal contact forces at t = {t:g} days", "",
+             "| contact | contacts | 5 % Fn (kN) | 95 % Fn (kN) | broken (%) |", "|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r['kind']} | {r['n_contacts']} | {r['fn_p05_kN']:.2f} | {r['fn_p95_kN']:.2f} | "
+                     f"{r['broken']} ({r['broken_pct']:.1f}) |")
+    sx, sy = res["swelling_strain_x"], res["swelling_strain_y"]
+    if sx:
+        lines += ["", f"Final swelling strain: x {sx[-1] * 1e6:.0f}e-6, y {sy[-1] * 1e6:.0f}e-6. "
+                      f"{res['n_particles']} particles, ADR iterations {res['adr_iterations']}, wall {res['wall_s']:.1f} s."]
+    with open(os.path.join(out, "table.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    return rows
+
+
+def plot_curves(out, res):
+    plt = _plt()
+    t = np.array(res["times_days"])
+    title = f"{LABEL.get(res['scenario'], res['scenario'])}, {res['behaviour']}, damage {'on' if res['damage'] else 'off'}"
+    fig, ax = plt.subplots(figsize=(6, 4))
+    ax.semilogx(t, np.array(res["swelling_strain_x"]) * 1e6, "o-", ms=3, label="x")
+    ax.semilogx(t, np.array(res["swelling_strain_y"]) * 1e6, "s-", ms=3, label="y")
+    ax.set(xlabel="time [day]", ylabel="swelling strain [1e-6]", title=title)
+    ax.grid(True, which="both", lw=0.3)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "swelling_strain.png"), dpi=120)
+    plt.close(fig)
+
+    fig, ax = plt.subplots(figsize=(6, 4))
+    ax.semilogy(np.arange(1, len(t) + 1), res["unbalanced_ratio"], "o-", ms=3, label="at convergence")
+    ax2 = ax.twinx()
+    ax2.plot(np.arange(1, len(t) + 1), res["adr_iterations_per_step"], "-", color="gray", lw=1)
+    ax2.set_ylabel("ADR iterations per step", color="gray")
+    ax.set(xlabel="physical step", ylabel="unbalanced-force ratio", title=title)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "unbalanced.png"), dpi=120)
+    plt.close(fig)
+
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    for name in KIND_NAMES:
+        d = res["per_kind"][name]
+        if res["n_contacts_by_kind"].get(name):
+            axes[0].semilogx(t, d["fn_p05_kN"], "-", color=COLORS[name], label=f"{name} 5 %")
+            axes[0].semilogx(t, d["fn_p95_kN"], "--", color=COLORS[name], label=f"{name} 95 %")
+            axes[1].semilogx(t, d["broken"], "-", color=COLORS[name], label=name)
+    axes[0].set(xlabel="time [day]", ylabel="normal contact force [kN] (tension > 0)", title=title)
+    axes[1].set(xlabel="time [day]", ylabel="broken contacts", title="damage")
+    for a in axes:
+        a.grid(True, which="both", lw=0.3)
+        a.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "force_quantiles.png"), dpi=120)
+    plt.close(fig)
+
+
+def plot_crack_map(out, res, assembly, broken_contacts):
+    """Broken contacts drawn as their Laguerre facets, coloured by kind, over the mesostructure."""
+    plt = _plt()
+    from matplotlib.collections import LineCollection
+    fig, ax = plt.subplots(figsize=(7, 7 * assembly.height_m / assembly.width_m))
+    for poly in assembly.polygons:
+        p = np.asarray(poly) * 1e3
+        ax.fill(p[:, 0], p[:, 1], color="0.85", lw=0.5, ec="0.5")
+    index = {(int(i), int(j)): c for c, (i, j) in enumerate(assembly.contacts)}
+    for k, name in enumerate(KIND_NAMES):
+        segs = []
+        for i, j, kind in broken_contacts:
+            c = index.get((min(i, j), max(i, j)))
+            if c is not None and kind == k:
+                s = assembly.facet_segment_m[c] * 1e3
+                segs.append([(s[0], s[1]), (s[2], s[3])])
+        if segs:
+            ax.add_collection(LineCollection(segs, colors=COLORS[name], linewidths=1.2, label=f"{name} ({len(segs)})"))
+    ax.set_xlim(0, assembly.width_m * 1e3)
+    ax.set_ylim(0, assembly.height_m * 1e3)
+    ax.set_aspect("equal")
+    ax.set(xlabel="x [mm]", ylabel="y [mm]",
+           title=f"crack map: {LABEL.get(res['scenario'], res['scenario'])}, {res['behaviour']}, t = {res['times_days'][-1]:g} d")
+    if broken_contacts:
+        ax.legend(loc="upper right", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "crack_map.png"), dpi=130)
+    plt.close(fig)
+
+
+def write_all(out, res, assembly, contact_arrays, O):
+    write_tables(out, res)
+    plot_curves(out, res)
+    broken = [(i.id1, i.id2, i.phys.kindId) for i in O.interactions if i.isReal and i.phys.broken]
+    plot_crack_map(out, res, assembly, broken)
+
+
+def compare(reference, others):
+    """Rows of the paper's Table 3.7: each run's final 5 %/95 % quantiles and broken contacts per
+    kind, with the variation in percent against the reference run."""
+    ref_rows = {r["kind"]: r for r in final_rows(reference)}
+    table = []
+    for res in [reference] + list(others):
+        for r in final_rows(res):
+            rr = ref_rows[r["kind"]]
+            var = lambda a, b: 100.0 * (a - b) / abs(b) if b and not math.isnan(b) and abs(b) > 1e-12 else float("nan")
+            table.append({"scenario": res["scenario"], "behaviour": res["behaviour"], "damage": res["damage"],
+                          "kind": r["kind"], "fn_p05_kN": r["fn_p05_kN"], "var_p05_pct": var(r["fn_p05_kN"], rr["fn_p05_kN"]),
+                          "fn_p95_kN": r["fn_p95_kN"], "var_p95_pct": var(r["fn_p95_kN"], rr["fn_p95_kN"]),
+                          "broken": r["broken"], "broken_pct": r["broken_pct"]})
+    return table
