@@ -20,8 +20,11 @@ from .generator import contact_kinds, generate, label_discs
 from .params import (DEFAULT_AGGREGATE_AREA_FRACTION, FULLER_SHARES, PAPER_FRACTIONS_MM,
                      MesoParameterError, MesoParameters)
 from .plot import plot_mesostructure
+from .yade_scene import (YadeScene, YadeUnavailableError, choose_contacts, set_contact_swelling,
+                         set_gel_pockets, to_yade)
 
 __all__ = ["AGG", "AGGREGATE_MATERIAL", "ITZ", "KIND_NAMES", "MATERIAL_NAMES", "MORTAR",
            "MORTAR_MATERIAL", "Assembly", "AggregatePlacementError", "DEFAULT_AGGREGATE_AREA_FRACTION",
            "FULLER_SHARES", "MesoParameterError", "MesoParameters", "PAPER_FRACTIONS_MM",
-           "contact_kinds", "generate", "label_discs", "load", "plot_mesostructure"]
+           "contact_kinds", "generate", "label_discs", "load", "plot_mesostructure",
+           "YadeScene", "YadeUnavailableError", "choose_contacts", "set_contact_swelling", "set_gel_pockets", "to_yade"]

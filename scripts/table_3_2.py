@@ -1,0 +1,149 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""The paper's Table 3.2: free swelling of a random mortar assembly (Rmax = 0.48 mm,
+Rmin/Rmax = 2/3), every contact elastic and swelling with d_inf = eps_inf x 2 R_mean
+(eps_inf = 1000e-6, R_mean the assembly's mean radius); ISR kinetics to 3650 days or ASR to
+50000 days. The paper finds 1061e-6 at the end of both. Nothing is fixed: the swelling loads are
+self-equilibrated, the solver starts from rest, and the rigid motions that round-off may leave
+are removed by the strain measure (least-squares affine fit of the displacements of the particles
+with at least 2 contacts; the few discs that the packing leaves held by the sides only are loose in a
+free specimen and are left out).
+
+  scripts/yade-swelldem -n -x scripts/table_3_2.py --size-mm 20 20 --seed 1 --out DIR [--case asr]
+--d-inf-rule contact-length gives every contact d_inf = eps_inf x L instead (a compatible expansion:
+the strain must then be eps_inf exactly, with no force left; a check of the chain scene-solver-measure).
+Writes DIR/displacements.npz (reference and final centres, radii, contacts, final Fn), DIR/results.json (case, n_particles, r_mean_m, d_inf_m, eps_final_x/_y, eps_final,
+paper_eps_final, times_days, strain curves, adr_iterations, wall_s, ...) and DIR/strain.png."""
+import argparse
+import json
+import os
+import sys
+import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "py"))
+
+ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+ap.add_argument("--size-mm", type=float, nargs=2, default=(20.0, 20.0), metavar=("W", "H"), help="specimen size [mm]")
+ap.add_argument("--seed", type=int, default=1)
+ap.add_argument("--case", choices=("isr", "asr"), default="isr")
+ap.add_argument("--steps-per-decade", type=float, default=10)
+ap.add_argument("--tolerance", type=float, default=1e-5, help="ADR unbalanced-force ratio")
+ap.add_argument("--young", type=float, default=30e9, help="contact modulus E_c [Pa] (the free swelling strain does not depend on it)")
+ap.add_argument("--eps-inf", type=float, default=1000e-6, help="target ultimate free swelling strain [-]")
+ap.add_argument("--t-start", type=float, default=0.01, help="age of the stress-free start [day]")
+ap.add_argument("--d-inf-rule", choices=("mean-radius", "contact-length"), default="mean-radius",
+                help="mean-radius: the paper's d_inf = eps_inf x 2 R_mean on every contact; contact-length: "
+                     "d_inf = eps_inf x L per contact (L its initial centre distance), a compatible expansion, as a check")
+ap.add_argument("--out", default="out/table_3_2")
+args = ap.parse_args(sys.argv[1:])
+for name in ("steps_per_decade", "young", "eps_inf", "t_start"):
+    if getattr(args, name) <= 0:
+        sys.exit(f"table_3_2.py: --{name.replace('_', '-')} = {getattr(args, name)} is out of range; allowed: > 0")
+if min(args.size_mm) < 4:
+    sys.exit(f"table_3_2.py: --size-mm = {args.size_mm} is out of range; allowed: >= 4 mm (a few discs)")
+
+import numpy as np
+import yade
+from yade import wrapper as W
+
+from swelldem import measure, meso, scene
+
+O = yade.Omega()
+PAPER_EPS_FINAL = 1061e-6
+t0 = time.time()
+os.makedirs(args.out, exist_ok=True)
+
+a = meso.generate(seed=args.seed, width_mm=args.size_mm[0], height_mm=args.size_mm[1], aggregate_area_fraction=0.0)
+r_mean = float(a.r.mean())
+d_inf = args.eps_inf * 2 * r_mean
+tau_c, tau_l, t_end = scene.KINETICS[args.case]
+kind = scene.contact_kind("MORTAR", behaviour="elastic", young=args.young, b3="mortar", swell_disp_inf=d_inf, kinetics=args.case)
+solver = W.AdrLogTimeIntegrator(tStart=args.t_start, tEnd=t_end, stepsPerDecade=args.steps_per_decade, tolerance=args.tolerance,
+                                label="solver", callback="table_3_2_record()")
+ys = meso.to_yade(a, {"MORTAR": kind}, solver)
+if args.d_inf_rule == "contact-length":
+    meso.set_contact_swelling(ys, np.arange(a.n_contacts), args.eps_inf * a.distance_m)
+ref = np.column_stack([a.x, a.y])
+# The strain is measured on the load-bearing skeleton: particles with at least 2 contacts. The
+# packing leaves a few discs held only by the specimen sides (0 or 1 contact with another disc);
+# in a free specimen they do not follow the expansion (0 contacts) or pivot freely (1 contact).
+coordination = a.coordination()
+skeleton = coordination >= 2
+hist = {"times_days": [args.t_start], "eps_x": [0.0], "eps_y": [0.0], "eps_xy": [0.0], "eps_side_x": [0.0], "eps_side_y": [0.0],
+        "eps_robust_x": [0.0], "eps_robust_y": [0.0], "rotation_rad": [0.0], "residual_rms_m": [0.0]}
+
+
+def table_3_2_record():
+    cur = ys.positions()[skeleton]
+    f = measure.affine_strain(ref[skeleton], cur)
+    rb = measure.affine_strain(ref[skeleton], cur, robust=True)
+    sd = measure.side_strain(ref[skeleton], cur, a.r[skeleton], band=a.r.max())
+    hist["times_days"].append(solver.physTime)
+    for key, v in (("eps_x", f["eps_xx"]), ("eps_y", f["eps_yy"]), ("eps_xy", f["eps_xy"]), ("eps_side_x", sd["eps_x"]),
+                   ("eps_side_y", sd["eps_y"]), ("eps_robust_x", rb["eps_xx"]), ("eps_robust_y", rb["eps_yy"]),
+                   ("rotation_rad", f["rotation"]), ("residual_rms_m", f["residual_rms"])):
+        hist[key].append(v)
+
+
+sys.modules["__main__"].table_3_2_record = table_3_2_record
+scene.run_to_end(solver)
+
+# Contact forces at the end: free swelling of a disordered network leaves self-stress, because
+# one d_inf on contacts of different lengths L is not a compatible (affine) strain field.
+fn = np.array([ys.interaction(c).phys.Fn for c in range(a.n_contacts)])
+L, A = a.distance_m, a.facet_area_m2
+eps_x, eps_y = hist["eps_x"][-1], hist["eps_y"][-1]
+xi_end = (1 - np.exp(-t_end / tau_c)) / (1 + np.exp(-(t_end - tau_l) / tau_c))
+xi_start = (1 - np.exp(-args.t_start / tau_c)) / (1 + np.exp(-(args.t_start - tau_l) / tau_c))
+res = {
+    "case": args.case, "d_inf_rule": args.d_inf_rule, "size_mm": list(args.size_mm), "seed": args.seed, "n_particles": a.n_particles, "n_contacts": a.n_contacts,
+    "n_new_contacts": sum(1 for i in O.interactions if i.isReal) - a.n_contacts,
+    "mean_coordination": a.mean_coordination, "n_measured": int(skeleton.sum()),
+    "n_excluded_by_contacts": {"0": int((coordination == 0).sum()), "1": int((coordination == 1).sum())}, "r_mean_m": r_mean, "r_min_m": float(a.r.min()), "r_max_m": float(a.r.max()),
+    "eps_inf": args.eps_inf, "d_inf_m": d_inf if args.d_inf_rule == "mean-radius" else None, "young_Pa": args.young, "tau_c_days": tau_c, "tau_l_days": tau_l,
+    "t_start_days": args.t_start, "t_end_days": t_end, "steps_per_decade": args.steps_per_decade, "tolerance": args.tolerance,
+    "xi_end_minus_xi_start": float(xi_end - xi_start),
+    "eps_final_x": eps_x, "eps_final_y": eps_y, "eps_final": 0.5 * (eps_x + eps_y), "eps_final_xy": hist["eps_xy"][-1],
+    "eps_final_side_x": hist["eps_side_x"][-1], "eps_final_side_y": hist["eps_side_y"][-1],
+    "eps_final_side": 0.5 * (hist["eps_side_x"][-1] + hist["eps_side_y"][-1]),
+    "eps_final_robust": 0.5 * (hist["eps_robust_x"][-1] + hist["eps_robust_y"][-1]),
+    "eps_final_over_eps_inf": 0.5 * (eps_x + eps_y) / args.eps_inf,
+    "paper_eps_final": PAPER_EPS_FINAL, "paper_r_mean_m": 0.397e-3,
+    # Affine estimate: uniform isotropic strain e with no shear; equilibrium of the whole network
+    # in the trace gives sum kn (e L - d) L = 0, kn = E A / L, hence e = d_inf / (A-weighted mean L).
+    "eps_affine_estimate": float(d_inf * A.sum() / (A * L).sum()) if args.d_inf_rule == "mean-radius" else args.eps_inf,
+    "contact_length_mean_m": float(L.mean()), "contact_length_area_weighted_mean_m": float((A * L).sum() / A.sum()),
+    "final_fn_quantiles_N": {"p5": float(np.quantile(fn, 0.05)), "p50": float(np.quantile(fn, 0.5)), "p95": float(np.quantile(fn, 0.95))},
+    # mean |Fn| left at the end, over the mean force a fully restrained contact would carry
+    "final_fn_over_free_swelling_force": float(np.abs(fn).mean() / np.mean(args.young * A / L * args.eps_inf * 2 * r_mean)),
+    **hist,
+    "adr_iterations": solver.totalIterations, "adr_iterations_per_step": list(solver.stepIterations), "n_steps": solver.nSteps,
+    "setup": ys.counts, "wall_s": time.time() - t0,
+}
+np.savez_compressed(os.path.join(args.out, "displacements.npz"), ref_xy=ref, cur_xy=ys.positions(), r=a.r,
+                    contacts=a.contacts, fn_N=fn)
+with open(os.path.join(args.out, "results.json"), "w") as f:
+    json.dump(res, f, indent=1)
+
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+fig, ax = plt.subplots(figsize=(6.4, 4.2))
+t = res["times_days"][1:]
+ax.semilogx(t, np.array(hist["eps_x"][1:]) * 1e6, "o-", ms=3, label="x (affine fit)")
+ax.semilogx(t, np.array(hist["eps_y"][1:]) * 1e6, "s-", ms=3, mfc="none", label="y (affine fit)")
+ax.semilogx(t, 0.5 * (np.array(hist["eps_side_x"][1:]) + np.array(hist["eps_side_y"][1:])) * 1e6, ":", label="mean, between sides")
+tt = np.array(t)
+xi = (1 - np.exp(-tt / tau_c)) / (1 + np.exp(-(tt - tau_l) / tau_c))
+ax.semilogx(tt, args.eps_inf * xi * 1e6, "k--", lw=0.8, label="eps_inf xi(t) (micro-macro rule)")
+ax.axhline(PAPER_EPS_FINAL * 1e6, color="r", lw=0.8, label="paper, Table 3.2: 1061")
+ax.set_xlabel("time [day]")
+ax.set_ylabel("free swelling strain [1e-6]")
+ax.set_title(f"Table 3.2, {args.case.upper()}{'' if args.d_inf_rule == 'mean-radius' else ', d_inf = eps_inf L'}: {a.n_particles} discs, {args.size_mm[0]:g} x {args.size_mm[1]:g} mm, seed {args.seed}")
+ax.legend(fontsize=8)
+fig.tight_layout()
+fig.savefig(os.path.join(args.out, "strain.png"), dpi=120)
+print(f"table_3_2: {args.case} {a.n_particles} discs R_mean={r_mean * 1e3:.4f} mm d_inf rule {args.d_inf_rule} "
+      f"(2 eps_inf R_mean = {d_inf * 1e6:.4f}e-6 m): "
+      f"eps_final x={eps_x * 1e6:.1f}e-6 y={eps_y * 1e6:.1f}e-6 mean={res['eps_final'] * 1e6:.1f}e-6 "
+      f"(affine estimate {res['eps_affine_estimate'] * 1e6:.1f}e-6, paper 1061e-6), "
+      f"ADR iterations {res['adr_iterations']}, wall {res['wall_s']:.1f} s -> {args.out}")

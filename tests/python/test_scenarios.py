@@ -1,0 +1,105 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""The swelling tests end to end on small specimens, through the launcher (real YADE, real plugin):
+the output contract, the paper's qualitative findings, the comparison table, bad input."""
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+from conftest import LAUNCHER, REPO, build_dir
+
+SCRIPT = os.path.join(REPO, "scripts", "swelling_test.py")
+KEYS = ("scenario", "behaviour", "damage", "times_days", "swelling_strain_x", "swelling_strain_y", "unbalanced_ratio",
+        "n_contacts_by_kind", "adr_iterations", "wall_s")
+
+
+def swelling_test(out, *args, check=True):
+    p = subprocess.run([LAUNCHER, "-n", "-x", SCRIPT, "--size-mm", "12", "12", "--steps-per-decade", "3", *args, "--out", str(out)],
+                       capture_output=True, text=True, timeout=900, env={**os.environ, "SWELLDEM_BUILD_DIR": build_dir()})
+    if check:
+        assert p.returncode == 0, p.stdout[-3000:] + p.stderr[-3000:]
+        with open(out / "results.json") as f:
+            return json.load(f), p
+    return None, p
+
+
+@pytest.fixture(scope="module")
+def isr_runs(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("isr")
+    runs = {}
+    for name, args in (("el", ("--behaviour", "elastic", "--no-damage")), ("ve", ("--behaviour", "viscoelastic", "--no-damage")),
+                       ("ve-dmg", ("--behaviour", "viscoelastic",))):
+        runs[name] = (tmp / name,) + swelling_test(tmp / name, "--scenario", "isr", *args)
+    return runs
+
+
+def test_output_contract(isr_runs):
+    out, res, proc = isr_runs["ve-dmg"]
+    for k in KEYS:
+        assert k in res
+    for kind in ("MORTAR", "ITZ", "AGG"):
+        for k in ("fn_p05_kN", "fn_p95_kN", "broken"):
+            assert len(res[f"{k}_{kind}"]) == len(res["times_days"])
+    assert res["status"] == "finished" and res["times_days"][-1] == pytest.approx(3650)
+    for f in ("table.md", "table.csv", "swelling_strain.png", "unbalanced.png", "force_quantiles.png", "crack_map.png"):
+        assert (out / f).stat().st_size > 0, f
+    vtk = sorted(os.listdir(out / "vtk"))
+    assert any("spheres" in v for v in vtk) and any("intrs" in v for v in vtk)
+    assert "swelldem: step 1/" in proc.stdout and "left ~" in proc.stdout
+    assert all(u <= 1e-4 * 1.0000001 or u == 0 for u in res["unbalanced_ratio"])
+
+
+def test_paper_findings_isr(isr_runs):
+    el, ve, dmg = (isr_runs[k][1] for k in ("el", "ve", "ve-dmg"))
+    # Aggregates restrain the swelling mortar: the specimen swells less than free mortar (eps_inf = 1000e-6).
+    for r in (el, ve):
+        assert 0.3e-3 < r["swelling_strain_x"][-1] < 1.0e-3
+        assert r["swelling_strain_y"][-1] == pytest.approx(r["swelling_strain_x"][-1], rel=0.15)
+    # Mortar is mostly in compression, aggregates mostly in tension (paper 3.5.2).
+    assert el["fn_p05_kN_MORTAR"][-1] < 0 and el["fn_p95_kN_AGG"][-1] > 0
+    # Aging viscoelasticity relaxes the forces of every kind (paper Table 3.4: -57 % to -76 %).
+    for kind in ("MORTAR", "ITZ", "AGG"):
+        assert abs(ve[f"fn_p05_kN_{kind}"][-1]) < abs(el[f"fn_p05_kN_{kind}"][-1]) or kind == "AGG"
+        assert ve[f"fn_p95_kN_{kind}"][-1] < el[f"fn_p95_kN_{kind}"][-1]
+    # No damage without damage; broken counts never decrease with damage, and ITZ breaks most (paper 3.5.5).
+    assert all(b == 0 for k in ("MORTAR", "ITZ", "AGG") for b in el[f"broken_{k}"])
+    for k in ("MORTAR", "ITZ", "AGG"):
+        b = dmg[f"broken_{k}"]
+        assert all(x <= y for x, y in zip(b, b[1:]))
+    share = {k: dmg[f"broken_{k}"][-1] / dmg["n_contacts_by_kind"][k] for k in ("MORTAR", "ITZ", "AGG")}
+    assert share["ITZ"] == max(share.values()) and share["ITZ"] > 0.2
+
+
+def test_compare_table_3_7(isr_runs, tmp_path):
+    ref_dir, ref = isr_runs["el"][:2]
+    p = subprocess.run([sys.executable, os.path.join(REPO, "scripts", "compare_runs.py"), "--reference", str(ref_dir),
+                        str(isr_runs["ve"][0]), str(isr_runs["ve-dmg"][0]), "--out", str(tmp_path)],
+                       capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, p.stderr
+    rows = list(__import__("csv").DictReader(open(tmp_path / "compare.csv")))
+    assert len(rows) == 9
+    ve = isr_runs["ve"][1]
+    row = [r for r in rows if r["behaviour"] == "viscoelastic" and r["damage"] == "False" and r["kind"] == "MORTAR"][0]
+    expected = 100 * (ve["fn_p05_kN_MORTAR"][-1] - ref["fn_p05_kN_MORTAR"][-1]) / abs(ref["fn_p05_kN_MORTAR"][-1])
+    assert float(row["var_p05_pct"]) == pytest.approx(expected, rel=1e-9)
+    assert "variation to the reference" in (tmp_path / "compare.md").read_text()
+
+
+def test_asr_coarse_swells_only_gel_pockets(tmp_path):
+    res, _ = swelling_test(tmp_path / "asrc", "--scenario", "asr-coarse", "--behaviour", "elastic", "--no-damage")
+    n_agg = res["n_contacts_by_kind"]["AGG"]
+    assert res["n_gel_pockets"] == pytest.approx(0.1 * n_agg, abs=1)
+    # Gel pockets in a few aggregate contacts swell the specimen far less than swelling mortar would.
+    assert 0 < res["swelling_strain_x"][-1] < 0.3e-3
+
+
+@pytest.mark.parametrize("args,needle", [(("--steps-per-decade", "0"), "steps_per_decade = 0.0 is out of range; allowed: > 0"),
+                                         (("--tolerance", "2"), "tolerance = 2.0 is out of range"),
+                                         (("--t-end", "0.5"), "t_end_days = 0.5 is out of range")])
+def test_bad_input_is_refused_before_work(tmp_path, args, needle):
+    _, p = swelling_test(tmp_path / "bad", *args, check=False)
+    assert p.returncode != 0
+    assert needle in p.stdout + p.stderr
+    assert not (tmp_path / "bad" / "results.json").exists()
