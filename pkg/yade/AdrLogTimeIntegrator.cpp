@@ -33,6 +33,7 @@ void AdrLogTimeIntegrator::postLoad()
 	core::require(massSafety >= 1, "AdrLogTimeIntegrator.massSafety", massSafety, ">= 1");
 	core::requireOpenInterval("AdrLogTimeIntegrator.maxDamping", maxDamping, 0, 2);
 	core::requirePositive("AdrLogTimeIntegrator.divergenceRatio", divergenceRatio);
+	core::require(colliderPeriod >= 1, "AdrLogTimeIntegrator.colliderPeriod", colliderPeriod, ">= 1");
 	core::requireOpenInterval("AdrLogTimeIntegrator.relativeForceFloor", relativeForceFloor, 0, 1);
 	sessionStart = std::chrono::steady_clock::now();
 }
@@ -64,9 +65,19 @@ std::vector<ContactKind*> AdrLogTimeIntegrator::kindsInScene() const
 long AdrLogTimeIntegrator::breakEvents() const
 {
 	long n = 0;
-	for (ContactKind* k : kindsInScene())
+	for (ContactKind* k : kinds)
 		n += k->breakEvents;
 	return n;
+}
+
+void AdrLogTimeIntegrator::controlCollider()
+{
+	// Bonded contacts exist from the start; the collider only has to find contacts made later,
+	// which a quasi-static run may find a few iterations late: run it once every colliderPeriod
+	// iterations and at the start of each physical step.
+	if (colliderPeriod <= 1) return;
+	for (const auto& e : scene->engines)
+		if (e && e->label == colliderLabel) e->dead = !(iterInStep == 0 || totalIterations % colliderPeriod == 0);
 }
 
 void AdrLogTimeIntegrator::initialize()
@@ -96,6 +107,7 @@ void AdrLogTimeIntegrator::initialize()
 	nContactsSeen  = -1;
 	sessionStart   = std::chrono::steady_clock::now();
 	wallBefore     = 0;
+	kinds          = kindsInScene();
 	brokenSeen     = breakEvents();
 	beginPhysicalStep();
 	rebeginStep = false;
@@ -108,7 +120,8 @@ void AdrLogTimeIntegrator::initialize()
 
 void AdrLogTimeIntegrator::beginPhysicalStep()
 {
-	for (ContactKind* k : kindsInScene()) {
+	kinds = kindsInScene();
+	for (ContactKind* k : kinds) {
 		k->law().beginStep(times[step - 1], times[step]);
 		++k->stepSerial;
 	}
@@ -201,7 +214,8 @@ void AdrLogTimeIntegrator::action()
 	}
 	if (finished) return;
 	if (rebeginStep) {
-		for (ContactKind* k : kindsInScene())
+		kinds = kindsInScene();
+		for (ContactKind* k : kinds)
 			k->law().beginStep(times[step - 1], times[step]);
 		rebeginStep = false;
 	}
@@ -251,6 +265,7 @@ void AdrLogTimeIntegrator::action()
 	// stiffness): a step loaded by next to nothing converges there instead of never.
 	const bool atRoundOff = nReal > 0 && nFree > 0 && sumRes / nFree <= 256 * std::numeric_limits<Real>::epsilon() * posScale * sumKn / nReal;
 
+	if (nReal != nContactsSeen) kinds = kindsInScene();
 	const long breaks    = breakEvents();
 	const bool newBreaks = breaks != brokenSeen;
 	brokenSeen           = breaks;
@@ -258,8 +273,10 @@ void AdrLogTimeIntegrator::action()
 
 	if (iterInStep >= minIterations && !newBreaks && (unbalanced <= tolerance || atRoundOff)) {
 		commitPhysicalStep();
+		controlCollider();
 		return;
 	}
+	controlCollider();
 	if (std::isnan(unbalanced) || unbalanced > divergenceRatio)
 		fail("diverged: unbalanced-force ratio " + num(unbalanced) + " > divergenceRatio " + num(divergenceRatio));
 	if (iterInStep >= maxIterations)

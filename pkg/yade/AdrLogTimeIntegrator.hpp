@@ -27,6 +27,8 @@ public:
 	X(Real, divergenceRatio, 1e6, "An unbalanced-force ratio above this (or NaN) stops the run as diverged [-]")                                      \
 	X(Real, relativeForceFloor, 1e-3, "The mean contact force of the ratio is at least this fraction of its largest value in the run [-]")      \
 	X(Real, forceScaleMax, 0.0, "Largest mean contact force of the run so far [N] (internal)")                                                   \
+	X(long, colliderPeriod, 20, "Run the engine labelled colliderLabel only every this many ADR iterations and at each step's start (1: always) [-]") \
+	X(string, colliderLabel, "collider", "Label of the collider engine that colliderPeriod controls [-]")                                        \
 	X(bool, verbose, true, "Print a progress line per physical step [-]")                                                                             \
 	X(string, callback, "", "Python code run after every converged physical step (in __main__) [-]")                                                  \
 	X(std::vector<Real>, times, std::vector<Real>(), "Physical times of the run, tStart first (set at the first iteration) [day]")                    \
@@ -68,6 +70,8 @@ private:
 	void                      computeMasses();
 	std::vector<ContactKind*> kindsInScene() const;
 	long                      breakEvents() const;
+	void                      controlCollider();
+	std::vector<ContactKind*> kinds; // the kinds of the scene's contacts, refreshed when contacts come or go
 	[[noreturn]] void         fail(const string& why) const;
 	double                    wallNow() const;
 	std::chrono::steady_clock::time_point sessionStart = std::chrono::steady_clock::now();

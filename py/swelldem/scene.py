@@ -42,7 +42,7 @@ def engines(ip2, solver, detection_factor=1.05):
     """ForceResetter, collider, InteractionLoop with swelldem's functors, then the ADR solver."""
     W = yade.wrapper
     return [W.ForceResetter(),
-            W.InsertionSortCollider([W.Bo1_Sphere_Aabb(aabbEnlargeFactor=detection_factor)], verletDist=0),
+            W.InsertionSortCollider([W.Bo1_Sphere_Aabb(aabbEnlargeFactor=detection_factor)], verletDist=0, label="collider"),
             W.InteractionLoop([W.Ig2_Sphere_Sphere_ScGeom(interactionDetectionFactor=detection_factor)], [ip2],
                               [W.Law2_ScGeom_SwellPhys_AgingSwelling()]),
             solver]
