@@ -26,12 +26,14 @@ ap.add_argument("--t-start", type=float, default=1.0, help="age of the stress-fr
 ap.add_argument("--t-end", type=float, default=0.0, help="last time [day] (0: the paper's, 3650 ISR / 50000 ASR)")
 ap.add_argument("--gel-fraction", type=float, default=0.1, help="asr-coarse: share of aggregate contacts that swell")
 ap.add_argument("--kelvin-units-per-decade", type=float, default=1.0)
+ap.add_argument("--parameters", choices=("paper-micro", "macro"), default="paper-micro",
+                help="read the paper's Table 3.3 q's (and the aggregate modulus) as contact values, or as macroscopic ones scaled by the measured beta")
 ap.add_argument("--vtk-every", type=int, default=0, help="VTK every k physical steps (0: the last only)")
 ap.add_argument("--out", default="out/swelling")
 a = ap.parse_args(sys.argv[1:])
 test = scenario.SwellingTest(scenario=a.scenario, behaviour=a.behaviour, damage=not a.no_damage, size_mm=tuple(a.size_mm),
                              seed=a.seed, steps_per_decade=a.steps_per_decade, tolerance=a.tolerance, t_start_days=a.t_start,
-                             t_end_days=a.t_end, gel_fraction=a.gel_fraction, kelvin_units_per_decade=a.kelvin_units_per_decade,
+                             t_end_days=a.t_end, gel_fraction=a.gel_fraction, kelvin_units_per_decade=a.kelvin_units_per_decade, parameters=a.parameters,
                              vtk_every=a.vtk_every, out=a.out)
 try:
     test.validate()

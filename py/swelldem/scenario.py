@@ -9,10 +9,12 @@ Run inside YADE with the plugin (scripts/swelling_test.py is the command-line fa
                                              size_mm=(30, 30), out="out/isr"))
 
 Decisions (docs/scenarios.md explains them):
-- contact moduli and micro B3 compliances come from the macroscopic values through a factor beta
-  measured on a random mortar assembly of the same packing (calibrate_modulus_factor): an assembly
-  whose contacts have modulus E_c has macroscopic modulus beta E_c, so E_c = E / beta and each
-  micro q_i = beta q_i (the law is linear in the compliance);
+- the paper's Table 3.3 q's are its micro (contact) parameters q_i*, and they are used as such by
+  default (parameters="paper-micro"); parameters="macro" reads them as macroscopic values and
+  derives the contact values through the factor beta measured on a random mortar assembly of the
+  same packing (calibrate_modulus_factor: contacts of modulus E_c give a macroscopic modulus
+  beta E_c, so E_c = E / beta and each micro q_i = beta q_i, the law being linear in the
+  compliance). beta is measured and reported in both cases (the macroscopic moduli it implies);
 - 'elastic' runs use aging-elastic mortar and ITZ contacts, E(t) = 1/J(t + 0.01 d, t) of the same
   B3 q's (the paper: "included the development over time of mortar and ITZ modulus");
   aggregate contacts are linear elastic (modulus AGGREGATE_YOUNG, an assumption: the paper gives none);
@@ -61,6 +63,7 @@ class SwellingTest:
     gel_fraction: float = 0.1             # asr-coarse: share of AGG contacts that swell [-]
     shear_ratio: float = 0.3              # ks / kn of every contact [-]
     kelvin_units_per_decade: float = 1.0  # Kelvin chain density [1/decade]
+    parameters: str = "paper-micro"       # paper-micro: Table 3.3 q's and AGGREGATE_YOUNG are contact values; macro: scaled by beta
     aggregate_area_fraction: float = -1   # < 0: the generator's default
     vtk_every: int = 0                    # VTK every k physical steps (0: only the last)
     out: str = "out/swelling"
@@ -87,6 +90,8 @@ class SwellingTest:
             _bad("gel_fraction", self.gel_fraction, "0 <= gel_fraction <= 1")
         if not self.shear_ratio > 0:
             _bad("shear_ratio", self.shear_ratio, "> 0")
+        if self.parameters not in ("paper-micro", "macro"):
+            _bad("parameters", self.parameters, "paper-micro, macro")
         if self.vtk_every < 0:
             _bad("vtk_every", self.vtk_every, ">= 0")
 
@@ -243,7 +248,10 @@ def run(test):
     cal = calibrate_modulus_factor(shear_ratio=test.shear_ratio)
     r_mean = float(assembly.r.mean())
     d_inf = test.eps_inf * 2 * r_mean  # the paper's micro-macro rule (Table 3.2)
-    kinds = make_kinds(test, cal["beta"], d_inf)
+    scale = cal["beta"] if test.parameters == "macro" else 1.0
+    kinds = make_kinds(test, scale, d_inf)
+    cal["macro_young_28d_Pa"] = {name: cal["beta"] / (scale * kinds[name].compliance(28.01, 28.0)) for name in ("MORTAR", "ITZ")}
+    cal["macro_young_28d_Pa"]["AGG"] = cal["beta"] * kinds["AGG"].young
     solver = W.AdrLogTimeIntegrator(tStart=test.t_start_days, tEnd=test.t_end, stepsPerDecade=test.steps_per_decade,
                                     tolerance=test.tolerance, label="swelldemSolver")
     ys = meso.to_yade(assembly, kinds, solver)
