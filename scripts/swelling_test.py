@@ -28,12 +28,16 @@ ap.add_argument("--gel-fraction", type=float, default=0.1, help="asr-coarse: sha
 ap.add_argument("--kelvin-units-per-decade", type=float, default=1.0)
 ap.add_argument("--parameters", choices=("paper-micro", "macro"), default="paper-micro",
                 help="read the paper's Table 3.3 q's (and the aggregate modulus) as contact values, or as macroscopic ones scaled by the measured beta")
+ap.add_argument("--eps-inf", type=float, default=1000e-6, help="ultimate free swelling strain of the swelling material")
+ap.add_argument("--aggregate-young", type=float, default=scenario.AGGREGATE_YOUNG, help="contact modulus of aggregate contacts [Pa]")
+ap.add_argument("--strength-scale", type=float, default=1.0, help="factor on the paper's tensile strengths")
 ap.add_argument("--vtk-every", type=int, default=0, help="VTK every k physical steps (0: the last only)")
 ap.add_argument("--out", default="out/swelling")
 a = ap.parse_args(sys.argv[1:])
 test = scenario.SwellingTest(scenario=a.scenario, behaviour=a.behaviour, damage=not a.no_damage, size_mm=tuple(a.size_mm),
                              seed=a.seed, steps_per_decade=a.steps_per_decade, tolerance=a.tolerance, t_start_days=a.t_start,
-                             t_end_days=a.t_end, gel_fraction=a.gel_fraction, kelvin_units_per_decade=a.kelvin_units_per_decade, parameters=a.parameters,
+                             t_end_days=a.t_end, gel_fraction=a.gel_fraction, kelvin_units_per_decade=a.kelvin_units_per_decade, parameters=a.parameters, eps_inf=a.eps_inf,
+                             aggregate_young=a.aggregate_young, strength_scale=a.strength_scale,
                              vtk_every=a.vtk_every, out=a.out)
 try:
     test.validate()

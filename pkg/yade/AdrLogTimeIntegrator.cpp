@@ -272,6 +272,7 @@ void AdrLogTimeIntegrator::action()
 	if (newBreaks || nReal != nContactsSeen || iterInStep == 1 || massX.size() != bodies.size()) computeMasses();
 
 	if (iterInStep >= minIterations && !newBreaks && (unbalanced <= tolerance || atRoundOff)) {
+		stepRoundOff.push_back(unbalanced > tolerance ? 1.0 : 0.0);
 		commitPhysicalStep();
 		controlCollider();
 		return;

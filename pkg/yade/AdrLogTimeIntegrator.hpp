@@ -41,6 +41,7 @@ public:
 	X(bool, finished, false, "True once the last physical step has converged [-]")                                                                    \
 	X(std::vector<Real>, stepIterations, std::vector<Real>(), "ADR iterations of each converged step [-]")                                            \
 	X(std::vector<Real>, stepUnbalanced, std::vector<Real>(), "Unbalanced-force ratio at the end of each converged step [-]")                         \
+	X(std::vector<Real>, stepRoundOff, std::vector<Real>(), "1 where a step ended at the round-off limit of the positions above the tolerance, else 0 [-]") \
 	X(std::vector<Real>, stepWall, std::vector<Real>(), "Wall time at the end of each converged step since the start [s]")                            \
 	X(long, brokenSeen, 0, "Break events seen so far (sum over kinds) [-]")                                                                            \
 	X(std::vector<Real>, massX, std::vector<Real>(), "Fictitious mass per body, x [kg-equivalent] (internal)")                                        \

@@ -62,6 +62,8 @@ class SwellingTest:
     eps_inf: float = 1000e-6              # ultimate free swelling strain of the swelling material [-]
     gel_fraction: float = 0.1             # asr-coarse: share of AGG contacts that swell [-]
     shear_ratio: float = 0.3              # ks / kn of every contact [-]
+    aggregate_young: float = AGGREGATE_YOUNG  # contact modulus of aggregate contacts (paper-micro) [Pa]
+    strength_scale: float = 1.0           # factor on the paper's tensile strengths [-]
     kelvin_units_per_decade: float = 1.0  # Kelvin chain density [1/decade]
     parameters: str = "paper-micro"       # paper-micro: Table 3.3 q's and AGGREGATE_YOUNG are contact values; macro: scaled by beta
     aggregate_area_fraction: float = -1   # < 0: the generator's default
@@ -90,6 +92,10 @@ class SwellingTest:
             _bad("gel_fraction", self.gel_fraction, "0 <= gel_fraction <= 1")
         if not self.shear_ratio > 0:
             _bad("shear_ratio", self.shear_ratio, "> 0")
+        if not self.aggregate_young > 0:
+            _bad("aggregate_young", self.aggregate_young, "> 0 [Pa]")
+        if not self.strength_scale > 0:
+            _bad("strength_scale", self.strength_scale, "> 0")
         if self.parameters not in ("paper-micro", "macro"):
             _bad("parameters", self.parameters, "paper-micro, macro")
         if self.vtk_every < 0:
@@ -151,10 +157,10 @@ def make_kinds(test, beta, d_inf):
     for name in KIND_NAMES:
         swells = name in sc["swelling_kinds"] or (test.scenario == "asr-coarse" and name == "AGG")
         common = dict(shear_ratio=test.shear_ratio, kinetics=sc["kinetics"], damage=test.damage,
-                      tensile_strength=TENSILE_STRENGTH[name], swelling=swells,
+                      tensile_strength=TENSILE_STRENGTH[name] * test.strength_scale, swelling=swells,
                       swell_disp_inf=d_inf if name in sc["swelling_kinds"] else 0.0)
         if name == "AGG":
-            k = contact_kind(name, behaviour="elastic", young=AGGREGATE_YOUNG / beta, **common)
+            k = contact_kind(name, behaviour="elastic", young=test.aggregate_young / beta, **common)
         else:
             behaviour = "viscoelastic" if test.behaviour == "viscoelastic" else "aging-elastic"
             k = contact_kind(name, behaviour=behaviour, b3=B3_OF_KIND[name], **common)
@@ -201,7 +207,8 @@ class _Recorder:
         r["swelling_strain_x"].append(s["eps_xx"])
         r["swelling_strain_y"].append(s["eps_yy"])
         r["unbalanced_ratio"].append(self.solver.unbalanced)
-        r["adr_iterations_per_step"].append(self.solver.iterInStep)
+        r["adr_iterations_per_step"].append(int(self.solver.stepIterations[-1]))
+        r["step_at_round_off"].append(bool(self.solver.stepRoundOff[-1]))
         for k, name in enumerate(KIND_NAMES):
             sel = kind == k
             q05, q95 = (np.quantile(fn[sel], [0.05, 0.95]) / 1e3).tolist() if sel.any() else (float("nan"),) * 2
@@ -262,7 +269,7 @@ def run(test):
     res = {"scenario": test.scenario, "behaviour": test.behaviour, "damage": test.damage, "config": asdict(test),
            "calibration": cal, "d_inf_m": d_inf, "r_mean_m": r_mean, "n_particles": int(len(assembly.x)),
            "n_contacts_by_kind": counts, "n_gel_pockets": int(len(gel)), "times_days": [], "swelling_strain_x": [],
-           "swelling_strain_y": [], "unbalanced_ratio": [], "adr_iterations_per_step": [], "adr_iterations": 0,
+           "swelling_strain_y": [], "unbalanced_ratio": [], "adr_iterations_per_step": [], "step_at_round_off": [], "adr_iterations": 0,
            "per_kind": {n: {"fn_p05_kN": [], "fn_p95_kN": [], "broken": []} for n in KIND_NAMES},
            "status": "running", "wall_s": 0.0}
     rec = _Recorder(test, assembly, ys, solver, res, test.out)

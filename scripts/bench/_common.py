@@ -1,0 +1,149 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""Shared helpers of the solver and law benchmarks (scripts/bench/bench_adr_vs_yade.py,
+scripts/bench/bench_law_cost.py): a bonded 2D assembly from swelldem.meso turned into a YADE scene
+with either swelldem's law or YADE's Law2_ScGeom_FrictPhys_CundallStrack, timing statistics and
+JSON output. The YADE parts import yade lazily, so the module also loads in plain python3."""
+import json
+import math
+import os
+import statistics
+import subprocess
+import sys
+
+BENCH_DIR = os.path.dirname(os.path.abspath(__file__))
+REPO_DIR = os.path.dirname(os.path.dirname(BENCH_DIR))
+if os.path.join(REPO_DIR, "py") not in sys.path:
+    sys.path.insert(0, os.path.join(REPO_DIR, "py"))
+LAUNCHER = os.path.join(REPO_DIR, "scripts", "yade-swelldem")
+
+# Discs per mm^2 of swelldem.meso's default packing (997 discs on 25 x 25 mm, seed 1).
+DISCS_PER_MM2 = 1.595
+# Paper Table 3.2: d_inf = eps_inf x 2 R_mean = 1000e-6 x 2 x 0.397 mm.
+D_INF_PAPER_M = 0.794e-6
+
+
+def side_mm_for(n_discs):
+    """Side of the square specimen [mm] that holds about n_discs discs of the default grading."""
+    return math.sqrt(n_discs / DISCS_PER_MM2)
+
+
+def make_assembly(n_discs, seed=1, aggregate_fraction=0.35):
+    """A square swelldem.meso assembly of about n_discs discs (SI arrays, see docs/mesostructure.md)."""
+    from swelldem import meso
+    s = side_mm_for(n_discs)
+    return meso.generate(seed=seed, width_mm=s, height_mm=s, aggregate_area_fraction=aggregate_fraction)
+
+
+def build_scene(a, law, kinds=None, integrator=None, extra_engines=(), radius_scale=1.0, fix_bottom=True,
+                shear_ratio=0.3, young_by_kind=None, swell_mask=None):
+    """Puts assembly `a` into the current YADE scene (after O.reset()) with explicit bonded contacts.
+
+    law: 'swell' (ConcreteMat, Ip2_ConcreteMat_ConcreteMat_SwellPhys with `kinds` = dict MORTAR/ITZ/AGG ->
+    ContactKind, Law2_ScGeom_SwellPhys_AgingSwelling) or 'stock' (FrictMat, Ip2_FrictMat_FrictMat_FrictPhys,
+    Law2_ScGeom_FrictPhys_CundallStrack, friction angle next to 90 degrees: no slip, kn = E_c A / L and
+    ks = shear_ratio kn set per contact from young_by_kind [Pa] so both laws see the same stiffness).
+    The engine list is ForceResetter, InteractionLoop, extra_engines..., integrator (no collider: the
+    contact set is the assembly's and stays so). radius_scale > 1 turns every contact into an overlap.
+    fix_bottom: discs touching the bottom side are fixed (no rigid-body modes).
+    swell_mask: per-contact booleans; where False the contact gets SwellPhys.swellDispInf = 0.
+    Returns (ids of the bodies, list of the interactions in assembly order)."""
+    import yade
+    from yade import utils
+    from swelldem import scene
+    W = yade.wrapper
+    O = yade.Omega()
+    O.reset()
+    r = a.r * radius_scale
+    if law == "swell":
+        mats = {-1: W.ConcreteMat(young=30e9, poisson=0.2, density=2400, aggregateId=-1, label="mortar")}
+        for g in sorted(set(int(v) for v in a.aggregate_id) - {-1}):
+            mats[g] = W.ConcreteMat(young=60e9, poisson=0.2, density=2600, aggregateId=g)
+        for m in mats.values():
+            O.materials.append(m)
+        ip2 = W.Ip2_ConcreteMat_ConcreteMat_SwellPhys(mortar=kinds["MORTAR"], itz=kinds["ITZ"], agg=kinds["AGG"])
+        law2 = W.Law2_ScGeom_SwellPhys_AgingSwelling()
+    elif law == "stock":
+        m = W.FrictMat(young=30e9, poisson=0.2, density=2400, frictionAngle=math.pi / 2 - 1e-9)
+        O.materials.append(m)
+        mats = {g: m for g in set(int(v) for v in a.aggregate_id)}
+        ip2 = W.Ip2_FrictMat_FrictMat_FrictPhys()
+        law2 = W.Law2_ScGeom_FrictPhys_CundallStrack(neverErase=True)
+    else:
+        raise ValueError(f"build_scene: law = {law!r} is out of range; allowed: 'swell', 'stock'")
+    ybottom = float(min(a.y - a.r))
+    ids = []
+    for k in range(len(a.r)):
+        fixed = fix_bottom and (a.y[k] - a.r[k]) <= ybottom + 1e-3 * a.r[k]
+        ids.append(O.bodies.append(scene.disc((float(a.x[k]), float(a.y[k])), float(r[k]), mats[int(a.aggregate_id[k])], fixed=fixed)))
+    # Detection factor wide enough for the assembly's near-contacts (gap <= 0.05 Rmax).
+    gap = max(0.0, float((a.gap_m / (a.r[a.contacts[:, 0]] + a.r[a.contacts[:, 1]])).max()))
+    ig2 = W.Ig2_Sphere_Sphere_ScGeom(interactionDetectionFactor=1.0 + 2 * gap + 1e-6)
+    O.engines = [W.ForceResetter(), W.InteractionLoop([ig2], [ip2], [law2], label="iloop")] + list(extra_engines) + \
+        ([integrator] if integrator is not None else [])
+    inters = []
+    for c, (i, j) in enumerate(a.contacts):
+        I = utils.createInteraction(ids[int(i)], ids[int(j)])
+        if law == "swell":
+            I.phys.area = float(a.facet_area_m2[c])
+            if swell_mask is not None and not swell_mask[c]:
+                I.phys.swellDispInf = 0.0
+        else:
+            L = float(a.distance_m[c])
+            kn = young_by_kind[int(a.kind[c])] * float(a.facet_area_m2[c]) / L
+            I.phys.kn, I.phys.ks = kn, shear_ratio * kn
+        inters.append(I)
+    return ids, inters
+
+
+def positions(ids):
+    import yade
+    O = yade.Omega()
+    return [(O.bodies[i].state.pos[0], O.bodies[i].state.pos[1]) for i in ids]
+
+
+def free_mask(ids):
+    import yade
+    O = yade.Omega()
+    return [O.bodies[i].dynamic for i in ids]
+
+
+def median(xs):
+    return statistics.median(xs) if xs else float("nan")
+
+
+def spread(xs):
+    """(min, median, max) of a list."""
+    return (min(xs), statistics.median(xs), max(xs)) if xs else (float("nan"),) * 3
+
+
+def write_json(path, data):
+    d = os.path.dirname(os.path.abspath(path))
+    os.makedirs(d, exist_ok=True)
+    with open(path, "w") as f:
+        json.dump(data, f, indent=1)
+    print(f"wrote {path}")
+
+
+def run_worker(script, threads, args, timeout=3600):
+    """Runs `script --worker args...` under scripts/yade-swelldem with `threads` OpenMP threads; returns
+    the JSON it prints on its last line that starts with 'BENCH_JSON '."""
+    cmd = [LAUNCHER, "-n", "-j", str(threads), "-x", script, "--worker"] + [str(x) for x in args]
+    p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
+    lines = [ln for ln in p.stdout.splitlines() if ln.startswith("BENCH_JSON ")]
+    if p.returncode != 0 or not lines:
+        sys.stderr.write(p.stdout[-4000:] + p.stderr[-4000:])
+        raise RuntimeError(f"{' '.join(cmd)} failed (exit {p.returncode})")
+    return json.loads(lines[-1][len("BENCH_JSON "):])
+
+
+def emit(data):
+    """The worker's answer to run_worker."""
+    print("BENCH_JSON " + json.dumps(data), flush=True)
+
+
+def in_yade():
+    try:
+        import yade  # noqa: F401
+        return hasattr(yade, "Omega")
+    except ImportError:
+        return False
