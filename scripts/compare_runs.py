@@ -40,7 +40,7 @@ def main(argv):
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)
-    fmt = lambda v: "-" if v != v else f"{v:.0f}"  # NaN (no reference value) prints as '-'
+    fmt = lambda v: "-" if v != v else f"{round(v)}"  # NaN (no reference value) prints as "-"
     lines = [f"# {report.LABEL.get(ref['scenario'], ref['scenario'])}: normal contact forces (kN) and variation to the reference (%)", "",
              "| behaviour | damage | contact | 5 % | var. % | 95 % | var. % | broken (%) |", "|---|---|---|---|---|---|---|---|"]
     for r in rows:

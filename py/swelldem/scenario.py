@@ -108,13 +108,8 @@ class SwellingTest:
 
 
 def _yade():
-    try:
-        import yade
-        from yade import wrapper
-        wrapper.AdrLogTimeIntegrator
-    except (ImportError, AttributeError) as e:
-        raise RuntimeError("swelldem.scenario needs YADE with the swelldem plugin: run it with scripts/yade-swelldem") from e
-    return yade, wrapper
+    from .plugin import require
+    return require("swelldem.scenario")
 
 
 def calibrate_modulus_factor(shear_ratio=0.3, seed=11, size_mm=15.0, strain=1e-4, **meso_overrides):
