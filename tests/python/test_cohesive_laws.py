@@ -1,0 +1,61 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""swelldem's law (elastic-brittle: creep and swelling off) against YADE's stock cohesive laws
+matched per contact (issue 8, docs/cohesive-laws.md), real YADE on a small concrete specimen.
+
+Why the tolerances are tight: with the same kn, ks on every bond, the same stress-free distance,
+the same tensile force f_t A, no moment transfer and no shear limit on intact bonds, the two
+laws compute the same contact forces from the same kinematics; the discs, masses, dt, loading
+and NewtonIntegrator are identical, so the trajectories are the same up to the order of
+floating-point operations. JCFpm (ScGeom, force and torque added as ours) agrees to 1e-6 (TOL);
+CohFrictPhys, which needs the ScGeom6D geometry functor and applies its force at the contact point,
+was measured 3e-6 off in modulus and 8e-6 in the first-break stress on this specimen (a small
+systematic difference of that code path, not isolated further), hence 1e-4 for it: still 100
+times smaller than what a 1 % stiffness or strength mismatch would give. The first break is a
+threshold crossing of the same force on the same contact: the same contacts break in the same
+recording interval (10 steps).
+"""
+import pytest
+
+TOL = {"jcfpm": 1e-6, "cohfrict": 1e-4}
+
+SCRIPT = r"""
+import sys
+from swelldem import meso, cohesive_compare as cc
+a = meso.generate(seed=3, width_mm=12, height_mm=12, aggregate_area_fraction=0.2, wall_gap_mm=0.3)
+moduli = cc.contact_moduli(0.38)
+out = {'kinds': [int((a.kind == k).sum()) for k in range(3)]}
+for law in sys.argv[1:]:
+    info = cc.build(law, a, moduli, damping=0.6)
+    r = cc.run_uniaxial(law, a, info, 'tension', deps_per_step=2e-8, chunk=10, drop=0.9)
+    out[law] = {k: r[k] for k in ('modulus_Pa', 'peak_stress_Pa', 'strain_at_peak', 'first_break', 'dt_s', 'status', 'broken_at_peak')}
+    out[law]['kn'] = info['kn'].tolist()
+dump(out)
+"""
+
+
+@pytest.fixture(scope="module")
+def runs(tmp_path_factory):
+    from conftest import YadeRun
+    return YadeRun(tmp_path_factory.mktemp("cohesive"))(SCRIPT, "swelldem", "cohfrict", "jcfpm", threads=1, timeout=300)
+
+
+def test_specimen_has_all_kinds(runs):
+    assert min(runs["kinds"]) > 10, runs["kinds"]
+
+
+@pytest.mark.parametrize("law", ["cohfrict", "jcfpm"])
+def test_same_elastic_modulus(runs, law):
+    ours, stock = runs["swelldem"], runs[law]
+    assert ours["dt_s"] == stock["dt_s"]
+    assert 5e9 < ours["modulus_Pa"] < 1e11
+    assert abs(stock["modulus_Pa"] / ours["modulus_Pa"] - 1) < TOL[law]
+
+
+@pytest.mark.parametrize("law", ["cohfrict", "jcfpm"])
+def test_same_first_break(runs, law):
+    ours, stock = runs["swelldem"]["first_break"], runs[law]["first_break"]
+    assert ours is not None and stock is not None
+    assert ours["step"] == stock["step"]
+    assert ours["contacts"] == stock["contacts"]
+    assert abs(stock["stress"] / ours["stress"] - 1) < TOL[law]
+    assert ours["stress"] > 0 and runs["swelldem"]["status"] == "post_peak"
