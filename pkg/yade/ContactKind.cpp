@@ -46,6 +46,7 @@ void ContactKind::postLoad()
 		throw std::invalid_argument(string(e.what()) + " (in ContactKind '" + name + "')");
 	}
 	std::lock_guard<std::mutex> lock(lawMutex_);
+	lawReady_.store(nullptr, std::memory_order_release);
 	law_.reset(); // parameters changed: the law is rebuilt on next use
 }
 
@@ -56,6 +57,7 @@ void ContactKind::prepare(Real shortestLag, Real longestLag)
 	this->longestLag  = longestLag;
 	try {
 		law_ = std::make_unique<core::ContactLaw>(params(), shortestLag, longestLag);
+		lawReady_.store(law_.get(), std::memory_order_release);
 	} catch (const std::invalid_argument& e) {
 		throw std::invalid_argument(string(e.what()) + " (in ContactKind '" + name + "')");
 	}
@@ -63,14 +65,16 @@ void ContactKind::prepare(Real shortestLag, Real longestLag)
 
 core::ContactLaw& ContactKind::law()
 {
+	// Contacts call this from InteractionLoop's threads; the law is built once, under the lock.
+	if (core::ContactLaw* ready = lawReady_.load(std::memory_order_acquire)) return *ready;
+	std::lock_guard<std::mutex> lock(lawMutex_);
 	if (!law_) {
-		std::lock_guard<std::mutex> lock(lawMutex_);
-		if (!law_) {
-			law_ = std::make_unique<core::ContactLaw>(params(), shortestLag, longestLag);
-			// Without the log-time integrator there is one open-ended step at age 28 days.
-			law_->beginStep(28.0, 28.0);
-		}
+		law_ = std::make_unique<core::ContactLaw>(params(), shortestLag, longestLag);
+		// Without the log-time integrator there is one open-ended step at age 28 days; after
+		// O.load the integrator begins its current step again before any contact commits.
+		law_->beginStep(28.0, 28.0);
 	}
+	lawReady_.store(law_.get(), std::memory_order_release);
 	return *law_;
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 #include "compat/Plugin.hpp"
 #include "core/ContactLaw.hpp"
+#include <atomic>
 #include <memory>
 #include <mutex>
 
@@ -71,8 +72,9 @@ public:
 	std::vector<Real> evaluateHistory(const std::vector<Real>& times, const std::vector<Real>& openings, Real area, Real length, Real swellDispInf) const;
 
 private:
-	std::unique_ptr<swelldem::core::ContactLaw> law_;
-	std::mutex                                  lawMutex_;
+	std::unique_ptr<swelldem::core::ContactLaw>  law_;
+	std::atomic<swelldem::core::ContactLaw*>     lawReady_ { nullptr }; // lock-free read once built
+	std::mutex                                   lawMutex_;
 };
 
 } // namespace yade
