@@ -13,6 +13,8 @@ namespace core = swelldem::core;
 
 namespace {
 	const unsigned kNeed2D = State::DOF_Z | State::DOF_RX | State::DOF_RY;
+	// Below this many discs a loop is cheaper than waking OpenMP's threads.
+	const long kParallelBodies = 4000;
 	string         num(double v)
 	{
 		std::ostringstream o;
@@ -225,22 +227,34 @@ void AdrLogTimeIntegrator::action()
 
 	// Unbalanced-force ratio, as YADE's unbalancedForce(): mean resultant on free bodies / mean contact force.
 	const auto& bodies = scene->bodies->body;
+	const long  nBodies = long(bodies.size());
 	Real        sumRes = 0, sumContact = 0, sumKn = 0, posScale = 0;
-	long        nFree = 0, nReal = 0;
-	for (const auto& b : bodies) {
+	long        nFree = 0, nReal = 0, badBody = -1;
+#pragma omp parallel for schedule(static) reduction(+ : sumRes, nFree) reduction(max : posScale) if (nBodies > kParallelBodies)
+	for (long k = 0; k < nBodies; ++k) {
+		const Body* b = bodies[k].get();
 		if (!b || b->isClump()) continue;
 		const State* s = b->state.get();
 		if ((s->blockedDOFs & (State::DOF_X | State::DOF_Y)) == (State::DOF_X | State::DOF_Y)) continue;
 		const Vector3r& f = scene->forces.getForce(b->id);
-		if (!std::isfinite(f[0]) || !std::isfinite(f[1]))
-			fail("non-finite force on body " + std::to_string(b->id) + " (" + num(f[0]) + ", " + num(f[1]) + ") N");
+		if (!std::isfinite(f[0]) || !std::isfinite(f[1])) {
+#pragma omp critical(swelldemBadBody)
+			if (badBody < 0 || b->id < badBody) badBody = b->id;
+			continue;
+		}
 		Real fx = (s->blockedDOFs & State::DOF_X) ? 0 : f[0], fy = (s->blockedDOFs & State::DOF_Y) ? 0 : f[1];
 		sumRes += std::sqrt(fx * fx + fy * fy);
 		posScale = std::max(posScale, s->se3.position.head<2>().cwiseAbs().maxCoeff());
 		++nFree;
 	}
-	const auto& L = scene->interactions->linIntrs;
-	for (size_t i = 0; i < scene->interactions->currSize; ++i) {
+	if (badBody >= 0) {
+		const Vector3r& f = scene->forces.getForce(int(badBody));
+		fail("non-finite force on body " + std::to_string(badBody) + " (" + num(f[0]) + ", " + num(f[1]) + ") N");
+	}
+	const auto& L     = scene->interactions->linIntrs;
+	const long  nIntr = long(scene->interactions->currSize);
+#pragma omp parallel for schedule(static) reduction(+ : nReal, sumContact, sumKn) if (nIntr > 2 * kParallelBodies)
+	for (long i = 0; i < nIntr; ++i) {
 		const Interaction* I = L[i].get();
 		if (!I->isReal()) continue;
 		++nReal;
@@ -287,7 +301,9 @@ void AdrLogTimeIntegrator::action()
 	// Damping from the Rayleigh quotient of the local diagonal stiffness estimate (Underwood).
 	const Real dt = scene->dt;
 	Real       num_ = 0, den = 0;
-	for (const auto& b : bodies) {
+#pragma omp parallel for schedule(static) reduction(+ : num_, den) if (nBodies > kParallelBodies)
+	for (long k = 0; k < nBodies; ++k) {
+		const Body* b = bodies[k].get();
 		if (!b) continue;
 		const State*    s  = b->state.get();
 		const int       id = b->id;
@@ -306,7 +322,9 @@ void AdrLogTimeIntegrator::action()
 	c      = std::min(c, maxDamping / dt);
 	damping = c * dt;
 
-	for (const auto& b : bodies) {
+#pragma omp parallel for schedule(static) if (nBodies > kParallelBodies)
+	for (long k = 0; k < nBodies; ++k) {
+		const Body* b = bodies[k].get();
 		if (!b) continue;
 		State*          s  = b->state.get();
 		const int       id = b->id;
