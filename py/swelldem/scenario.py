@@ -20,9 +20,7 @@ Decisions (docs/scenarios.md explains them):
   aggregate contacts are linear elastic (modulus AGGREGATE_YOUNG, an assumption: the paper gives none);
 - the specimen is free (no support); strains are the least-squares affine fit of all displacements.
 """
-import csv
 import json
-import math
 import os
 import time
 from dataclasses import asdict, dataclass, field
@@ -122,7 +120,7 @@ def calibrate_modulus_factor(shear_ratio=0.3, seed=11, size_mm=15.0, strain=1e-4
     e_c = 1e9
     kind = scene.contact_kind("MORTAR", behaviour="elastic", young=e_c, shear_ratio=shear_ratio)
     solver = W.AdrLogTimeIntegrator(tStart=1.0, tEnd=10.0, stepsPerDecade=1, tolerance=1e-6, verbose=False)
-    ys = meso.to_yade(a, {"MORTAR": kind}, solver)
+    meso.to_yade(a, {"MORTAR": kind}, solver)
     O = yade.Omega()
     band = 1.5 * a.r.max()
     left = np.flatnonzero(a.x - a.r < band)
@@ -146,7 +144,7 @@ def calibrate_modulus_factor(shear_ratio=0.3, seed=11, size_mm=15.0, strain=1e-4
 
 def make_kinds(test, beta, d_inf):
     """The three ContactKind objects of a test (micro parameters from the macro ones through beta)."""
-    from .scene import KINETICS, contact_kind
+    from .scene import contact_kind
     sc = SCENARIOS[test.scenario]
     kinds = {}
     for name in KIND_NAMES:
@@ -162,7 +160,6 @@ def make_kinds(test, beta, d_inf):
             k.q1, k.q2, k.q3, k.q4 = (beta * q for q in (k.q1, k.q2, k.q3, k.q4))
             k.kelvinUnitsPerDecade = test.kelvin_units_per_decade
         kinds[name] = k
-    assert KINETICS  # kinetics names are validated by contact_kind
     return kinds
 
 
