@@ -283,7 +283,9 @@ void AdrLogTimeIntegrator::action()
 	const long breaks    = breakEvents();
 	const bool newBreaks = breaks != brokenSeen;
 	brokenSeen           = breaks;
-	if (newBreaks || nReal != nContactsSeen || iterInStep == 1 || massX.size() != bodies.size()) computeMasses();
+	// A break leaves kn, ks (and so the Gershgorin bound) as they are: only new or lost contacts
+	// and a new step's stiffness call for new masses.
+	if (nReal != nContactsSeen || iterInStep == 1 || massX.size() != bodies.size()) computeMasses();
 
 	if (iterInStep >= minIterations && !newBreaks && (unbalanced <= tolerance || atRoundOff)) {
 		stepRoundOff.push_back(unbalanced > tolerance ? 1.0 : 0.0);
