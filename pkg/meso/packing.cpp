@@ -167,6 +167,18 @@ class Packer {
     return 0.0;  // LEFT-FLOOR, FLOOR-RIGHT corners
   }
 
+  // The other leg of a right triangle with hypotenuse hyp and leg side; a leg
+  // that is imaginary by round-off only counts as 0. False when it does not exist.
+  static bool other_leg(double hyp, double side, double& leg) {
+    double h2 = hyp * hyp - side * side;
+    if (h2 < 0) {
+      if (h2 < -1e-12 * hyp * hyp) return false;
+      h2 = 0;
+    }
+    leg = std::sqrt(h2);
+    return true;
+  }
+
   // Centre of the disc of radius rr tangent to objects a then b, on the empty
   // side of the chain. Returns false when it does not exist.
   bool candidate(int a, int b, double rr, double& px, double& py) const {
@@ -176,37 +188,26 @@ class Packer {
       if (d <= 0) return false;
       double la = R_[a] + rr, lb = R_[b] + rr;
       double t = (la * la - lb * lb + d * d) / (2 * d);
-      double h2 = la * la - t * t;
-      if (h2 < 0) {
-        if (h2 < -1e-12 * la * la) return false;
-        h2 = 0;
-      }
-      double h = std::sqrt(h2), ux = dx / d, uy = dy / d;
+      double h;
+      if (!other_leg(la, t, h)) return false;
+      double ux = dx / d, uy = dy / d;
       px = X_[a] + t * ux - h * uy;
       py = Y_[a] + t * uy + h * ux;
       return true;
     }
     auto vertical = [&](double xc, int d, double& ox, double& oy) {
       // centre on the line x = xc, tangent to disc d, above it
-      double l = R_[d] + rr, dx = xc - X_[d];
-      double h2 = l * l - dx * dx;
-      if (h2 < 0) {
-        if (h2 < -1e-12 * l * l) return false;
-        h2 = 0;
-      }
+      double h;
+      if (!other_leg(R_[d] + rr, xc - X_[d], h)) return false;
       ox = xc;
-      oy = Y_[d] + std::sqrt(h2);
+      oy = Y_[d] + h;
       return true;
     };
     auto horizontal = [&](int d, double sign, double& ox, double& oy) {
       // centre on the line y = rr, tangent to disc d, on side `sign` of it
-      double l = R_[d] + rr, dy = rr - Y_[d];
-      double h2 = l * l - dy * dy;
-      if (h2 < 0) {
-        if (h2 < -1e-12 * l * l) return false;
-        h2 = 0;
-      }
-      ox = X_[d] + sign * std::sqrt(h2);
+      double h;
+      if (!other_leg(R_[d] + rr, rr - Y_[d], h)) return false;
+      ox = X_[d] + sign * h;
       oy = rr;
       return true;
     };

@@ -37,14 +37,20 @@ core::ContactKindParams ContactKind::params() const
 	return p;
 }
 
-void ContactKind::postLoad()
+core::ContactKindParams ContactKind::checkedParams() const
 {
-	// Validate now, with the kind's name in the message, so bad input fails before any work starts.
 	try {
-		params().validate();
+		core::ContactKindParams p = params();
+		p.validate();
+		return p;
 	} catch (const std::invalid_argument& e) {
 		throw std::invalid_argument(string(e.what()) + " (in ContactKind '" + name + "')");
 	}
+}
+
+void ContactKind::postLoad()
+{
+	checkedParams(); // bad input fails here, before any work starts
 	std::lock_guard<std::mutex> lock(lawMutex_);
 	lawReady_.store(nullptr, std::memory_order_release);
 	law_.reset(); // parameters changed: the law is rebuilt on next use
@@ -55,12 +61,8 @@ void ContactKind::prepare(Real shortestLag, Real longestLag)
 	std::lock_guard<std::mutex> lock(lawMutex_);
 	this->shortestLag = shortestLag;
 	this->longestLag  = longestLag;
-	try {
-		law_ = std::make_unique<core::ContactLaw>(params(), shortestLag, longestLag);
-		lawReady_.store(law_.get(), std::memory_order_release);
-	} catch (const std::invalid_argument& e) {
-		throw std::invalid_argument(string(e.what()) + " (in ContactKind '" + name + "')");
-	}
+	law_ = std::make_unique<core::ContactLaw>(checkedParams(), shortestLag, longestLag);
+	lawReady_.store(law_.get(), std::memory_order_release);
 }
 
 core::ContactLaw& ContactKind::law()
@@ -69,7 +71,7 @@ core::ContactLaw& ContactKind::law()
 	if (core::ContactLaw* ready = lawReady_.load(std::memory_order_acquire)) return *ready;
 	std::lock_guard<std::mutex> lock(lawMutex_);
 	if (!law_) {
-		law_ = std::make_unique<core::ContactLaw>(params(), shortestLag, longestLag);
+		law_ = std::make_unique<core::ContactLaw>(checkedParams(), shortestLag, longestLag);
 		// Without the log-time integrator there is one open-ended step at age 28 days; after
 		// O.load the integrator begins its current step again before any contact commits.
 		law_->beginStep(28.0, 28.0);

@@ -62,6 +62,8 @@ public:
 
 	// --- runtime, not serialized
 	swelldem::core::ContactKindParams params() const;
+	/// params(), validated; the error names this kind.
+	swelldem::core::ContactKindParams checkedParams() const;
 	/// Builds the core law for an analysis with these lags [day] (AdrLogTimeIntegrator calls it).
 	void prepare(Real shortestLag, Real longestLag);
 	/// The core law; built with default lags on first use if the integrator has not prepared it.
