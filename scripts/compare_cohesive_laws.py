@@ -132,7 +132,7 @@ for r in rows:
                  f"{r['broken_end_MORTAR']}/{r['broken_end_ITZ']}/{r['broken_end_AGG']}{dmg} | {r['end_strain_1e-6']:.0f} | {r['steps']} | {r['wall_s']:.1f} |")
 if "cpm_calibration" in res:
     p = res["cpm_calibration"]
-    lines += ["", f"Cpm material: young {p['young']:.4g} Pa, epsCrackOnset {p['epsCrackOnset']:.4g}, sigmaT {cc.CPM_SIGMA_T:g} Pa, "
+    lines += ["", f"Cpm material: young {p['young']:.4g} Pa, epsCrackOnset {p['epsCrackOnset']:.4g}, sigmaT {p['sigmaT']:.4g} Pa ({cc.CPM_SIGMA_T_RATIO:.3g} x young x epsCrackOnset), "
                   f"relDuctility {cc.CPM_REL_DUCTILITY:g}, poisson (ks/kn) {cc.SHEAR_RATIO}; calibration {p['wall_s']:.0f} s. "
                   f"A Cpm contact counts as broken when omega > {cc.CPM_OMEGA_BROKEN}."]
 if "rate_check" in res:

@@ -41,8 +41,14 @@ SHEAR_RATIO = 0.3           # ks / kn, as scenario.SwellingTest
 FRICTION_ANGLE = 0.5        # [rad] broken contacts (Coulomb), every law
 NEVER = 1e30                # [N] a shear strength that never binds
 DENSITY = 2400.0            # [kg/m3]
-#: Cpm's own material constants that are not calibrated (its documentation's concrete values).
-CPM_SIGMA_T = 3.5e6         # [Pa] undamaged shear cohesion
+#: Cpm's own constants that are not calibrated, from the concrete values of YADE's Cpm examples
+#: (young 24 GPa, epsCrackOnset 1e-4, sigmaT 3.5 MPa, relDuctility 30). sigmaT is a stress on
+#: Cpm's cross-section pi r_min^2, which in a 1 m thick 2D specimen is ~1000 times smaller than
+#: the facet area, so `young` must be ~1e14 Pa for the same kn; an absolute 3.5 MPa would then sit
+#: far below the contact stresses (young x strain ~ 1e9 Pa) and let every bond slide in shear from
+#: the first step (measured: 4 GPa instead of 41). It is therefore kept at the examples' ratio to
+#: the tensile stress at crack onset: sigmaT = CPM_SIGMA_T_RATIO x young x epsCrackOnset.
+CPM_SIGMA_T_RATIO = 3.5e6 / (24e9 * 1e-4)  # [-]
 CPM_REL_DUCTILITY = 30.0    # [-] epsFracture / epsCrackOnset
 CPM_OMEGA_BROKEN = 0.99     # a Cpm contact counts as broken when its damage omega exceeds this
 LAW_TITLES = {"swelldem": "swelldem (elastic-brittle)", "cohfrict": "CohFrictPhys (matched)",
@@ -158,8 +164,9 @@ def build(law, assembly, moduli, damping=0.6, strengths=None, cpm=None, damage=T
             p.crossSection = float(assembly.facet_area_m2[c])
     elif law == "cpm":
         cpm = cpm or {}
-        mat = W.CpmMat(young=cpm.get("young", 30e9), poisson=SHEAR_RATIO, density=DENSITY, frictionAngle=FRICTION_ANGLE,
-                       sigmaT=cpm.get("sigmaT", CPM_SIGMA_T), epsCrackOnset=cpm.get("epsCrackOnset", 1e-4),
+        young, eco = cpm.get("young", 30e9), cpm.get("epsCrackOnset", 1e-4)
+        mat = W.CpmMat(young=young, poisson=SHEAR_RATIO, density=DENSITY, frictionAngle=FRICTION_ANGLE,
+                       sigmaT=cpm.get("sigmaT", CPM_SIGMA_T_RATIO * young * eco), epsCrackOnset=eco,
                        relDuctility=cpm.get("relDuctility", CPM_REL_DUCTILITY), neverDamage=not damage)
         O.materials.append(mat)
         _discs(assembly, lambda i: mat)
@@ -346,8 +353,10 @@ def fit_modulus(strain, stress, eps_peak, eps_first_break=None, window=(0.3, 0.9
 
 def calibrate_cpm(assembly, moduli, target_modulus, target_peak, deps_per_step, damping, iterations=2, log=print):
     """Cpm's young and epsCrackOnset so that the tension test gives target_modulus and target_peak.
-    The macroscopic modulus is proportional to young (linear elasticity); the peak, at fixed young,
-    scales about linearly with epsCrackOnset (strain-based damage), refined by `iterations` runs."""
+    The macroscopic modulus is proportional to young (linear elasticity). At fixed young, every
+    threshold of the law scales with epsCrackOnset (damage is strain-based and sigmaT is tied to
+    young x epsCrackOnset), so the peak is proportional to it up to the loading rate; `iterations`
+    runs refine it."""
     yade, _ = _yade()
     p = {"young": 30e9, "epsCrackOnset": 1e-4}
     # 1. modulus: an elastic run (neverDamage) to a small strain
@@ -369,6 +378,7 @@ def calibrate_cpm(assembly, moduli, target_modulus, target_peak, deps_per_step, 
             f"(target {target_peak / 1e6:.3f}), E {r['modulus_Pa'] / 1e9:.2f} GPa")
         eco *= target_peak / r["peak_stress_Pa"]
     p["epsCrackOnset"] = eco
+    p["sigmaT"] = CPM_SIGMA_T_RATIO * p["young"] * eco
     p["history"] = history
     p["modulus_per_30GPa"] = e0
     return p

@@ -59,3 +59,32 @@ def test_same_first_break(runs, law):
     assert ours["contacts"] == stock["contacts"]
     assert abs(stock["stress"] / ours["stress"] - 1) < TOL[law]
     assert ours["stress"] > 0 and runs["swelldem"]["status"] == "post_peak"
+
+
+CPM_SCRIPT = r"""
+from swelldem import meso, cohesive_compare as cc
+a = meso.generate(seed=3, width_mm=12, height_mm=12, aggregate_area_fraction=0.2, wall_gap_mm=0.3)
+moduli = cc.contact_moduli(0.38)
+ref = cc.run_uniaxial('swelldem', a, cc.build('swelldem', a, moduli), 'tension', deps_per_step=2e-8)
+p = cc.calibrate_cpm(a, moduli, ref['modulus_Pa'], ref['peak_stress_Pa'], 2e-8, 0.6, iterations=1, log=lambda m: None)
+r = cc.run_uniaxial('cpm', a, cc.build('cpm', a, moduli, cpm=p), 'tension', deps_per_step=2e-8)
+dump({'ref': {k: ref[k] for k in ('modulus_Pa', 'peak_stress_Pa')}, 'cpm': {k: r[k] for k in ('modulus_Pa', 'peak_stress_Pa', 'status', 'first_damage_strain', 'strain_at_peak')},
+      'young': p['young'], 'modulus_per_30GPa': p['modulus_per_30GPa']})
+"""
+
+
+def test_cpm_calibrated_to_our_modulus_and_peak(tmp_path):
+    """Cpm is calibrated, not matched: young from an undamaged (neverDamage) run, epsCrackOnset from
+    one damaging run scaled by the ratio of peaks. The check is that the calibrated, damaging Cpm
+    run then reproduces our modulus and tensile peak within 2 % (measured 0.4 % and 0.3 %): this
+    holds only if Cpm's elastic range in the damaging run is that of the undamaged run (with an
+    absolute sigmaT of 3.5 MPa at young ~1e14 Pa every bond slid in shear and the slope came out
+    10 times lower) and if its peak scales with epsCrackOnset."""
+    from conftest import YadeRun
+    out = YadeRun(tmp_path)(CPM_SCRIPT, threads=1, timeout=300)
+    ref, cpm = out["ref"], out["cpm"]
+    assert 1e13 < out["young"] < 1e15  # 2D, 1 m thick: Cpm's cross-section pi r^2 is ~1000 x below the facet area
+    assert abs(cpm["modulus_Pa"] / ref["modulus_Pa"] - 1) < 0.02, (cpm, ref)
+    assert abs(cpm["peak_stress_Pa"] / ref["peak_stress_Pa"] - 1) < 0.02, (cpm, ref)
+    assert cpm["status"] == "post_peak"
+    assert 0 < cpm["first_damage_strain"] < cpm["strain_at_peak"]  # Cpm damages gradually before its peak
