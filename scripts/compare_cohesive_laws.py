@@ -6,11 +6,12 @@ compression (issue 8; docs/cohesive-laws.md).
 
   scripts/yade-swelldem -j 1 -n -x scripts/compare_cohesive_laws.py [--size-mm 15 15] [--seed 2] \
       [--deps 1e-8] [--damping 0.6] [--beta B] [--laws swelldem cohfrict jcfpm cpm] \
-      [--cases tension compression] [--rate-check] --out DIR
+      [--cases tension compression swelling] [--rate-check] --out DIR
 
 writes DIR/results.json (per law and case: modulus, peak stress, strain at peak, broken contacts
 per kind at the peak and at the end, wall time, curves), DIR/table.md, DIR/table.csv,
-DIR/stress_strain.png and DIR/crack_<law>_<case>.png."""
+DIR/stress_strain.png and DIR/crack_<law>_<case>.png; the free-swelling case adds DIR/swelling.csv, a
+section of DIR/table.md and DIR/crack_<law>_swelling-dmg.png."""
 import argparse
 import csv
 import json
@@ -31,7 +32,10 @@ ap.add_argument("--deps", type=float, default=1e-8, help="strain increment per s
 ap.add_argument("--damping", type=float, default=0.6, help="NewtonIntegrator local damping [-]")
 ap.add_argument("--beta", type=float, default=0.0, help="E_macro / E_c (0: measure it, scenario.calibrate_modulus_factor)")
 ap.add_argument("--laws", nargs="+", choices=cc.LAWS, default=list(cc.LAWS))
-ap.add_argument("--cases", nargs="+", choices=("tension", "compression"), default=["tension", "compression"])
+ap.add_argument("--cases", nargs="+", choices=("tension", "compression", "swelling"), default=["tension", "compression", "swelling"],
+                help="swelling: free swelling of the mortar (ISR kinetics, eps_inf --eps-inf), damage off and on; "
+                     "swelldem by its own law, cohfrict and jcfpm by growing the mortar discs' radii (Cpm: not run)")
+ap.add_argument("--eps-inf", type=float, default=1000e-6, help="free-swelling case: ultimate swelling strain of the mortar [-]")
 ap.add_argument("--max-strain-compression", type=float, default=1.5e-3)
 ap.add_argument("--rate-check", action="store_true", help="also run swelldem and cpm in tension at half the rate")
 ap.add_argument("--out", default="out/cohesive_laws")
@@ -75,24 +79,33 @@ def run(law, case, deps, cpm=None):
     return r
 
 
+uniaxial = [c for c in args.cases if c != "swelling"]
 tension_ref = None
 for law in [x for x in cc.LAWS if x in args.laws and x != "cpm"]:
-    for case in args.cases:
+    for case in uniaxial:
         r = run(law, case, args.deps)
         res["runs"][f"{law}/{case}"] = r
         if law == "swelldem" and case == "tension":
             tension_ref = r
         save()
-if "cpm" in args.laws:
+if "cpm" in args.laws and uniaxial:
     if tension_ref is None:
         tension_ref = run("swelldem", "tension", args.deps)
     t0 = time.time()
     p = cc.calibrate_cpm(assembly, moduli, tension_ref["modulus_Pa"], tension_ref["peak_stress_Pa"], args.deps, args.damping, log=log)
     p["wall_s"] = time.time() - t0
     res["cpm_calibration"] = p
-    for case in args.cases:
+    for case in uniaxial:
         res["runs"][f"cpm/{case}"] = run("cpm", case, args.deps, cpm=p)
         save()
+if "swelling" in args.cases:
+    res["swelling"] = {}
+    for damage in (False, True):
+        for law in [x for x in ("swelldem", "cohfrict", "jcfpm") if x in args.laws]:
+            # with damage, sliding broken contacts keep the ADR ratio near 1e-6 on this specimen
+            r = cc.free_swelling(law, assembly, moduli, eps_inf=args.eps_inf, damage=damage, tolerance=1e-5 if damage else 1e-6, log=log)
+            res["swelling"][f"{law}/{'dmg' if damage else 'nodmg'}"] = r
+            save()
 if args.rate_check:
     res["rate_check"] = {}
     for law in [x for x in ("swelldem", "cpm") if x in args.laws]:
@@ -106,7 +119,7 @@ if args.rate_check:
 
 # ---- tables and plots ----
 rows = []
-for key, r in res["runs"].items():
+for key, r in (res["runs"].items() if uniaxial else ()):
     law, case = key.split("/")
     bp, be = r["broken_at_peak"], r["broken_end"]
     rows.append({"law": law, "case": case, "modulus_GPa": r["modulus_Pa"] / 1e9, "peak_MPa": r["peak_stress_Pa"] / 1e6,
@@ -116,10 +129,11 @@ for key, r in res["runs"].items():
                  "broken_end_MORTAR": be["MORTAR"], "broken_end_ITZ": be["ITZ"], "broken_end_AGG": be["AGG"],
                  "damaged_end": r["damaged_end"] if r["damaged_end"] is not None else "", "end_strain_1e-6": r["strain"][-1] * 1e6,
                  "steps": r["steps"], "wall_s": r["wall_s"], "n_contacts": r["n_contacts"]})
-with open(os.path.join(args.out, "table.csv"), "w", newline="") as f:
-    w = csv.DictWriter(f, fieldnames=list(rows[0]))
-    w.writeheader()
-    w.writerows(rows)
+if rows:
+    with open(os.path.join(args.out, "table.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
 lines = [f"# Same specimen, four cohesive laws ({args.size_mm[0]:g} x {args.size_mm[1]:g} mm, seed {args.seed}, "
          f"{assembly.n_particles} discs, {assembly.n_contacts} bonded contacts, beta {cal['beta']:.4f}, "
          f"strain step {args.deps:g}, damping {args.damping:g})", "",
@@ -139,6 +153,33 @@ if "rate_check" in res:
     for law, d in res["rate_check"].items():
         lines.append(f"Rate check ({law}, tension, strain step {d['deps']:g}): peak {d['peak_stress_Pa'] / 1e6:.3f} MPa, "
                      f"change {d['peak_change_pct']:+.2f} %.")
+if res.get("swelling"):
+    srows = []
+    ref = {d: np.array(res["swelling"][f"swelldem/{d}"]["fn_N"]) for d in ("nodmg", "dmg") if f"swelldem/{d}" in res["swelling"]}
+    for key, r in res["swelling"].items():
+        law, d = key.split("/")
+        q = r["fn_p05_p95_N"]
+        f = np.array(r["fn_N"])
+        dev = float(np.max(np.abs(f - ref[d])) / np.max(np.abs(ref[d]))) if d in ref and law != "swelldem" else float("nan")
+        srows.append({"law": law, "damage": d == "dmg", "eps_xx_1e-6": r["eps_xx"] * 1e6, "eps_yy_1e-6": r["eps_yy"] * 1e6,
+                      **{f"fn_{i}_kN_{n}": q[n][k] / 1e3 for n in cc.KIND_NAMES for k, i in enumerate(("p05", "p95"))},
+                      **{f"broken_{n}": r["broken_end"][n] for n in cc.KIND_NAMES}, "max_dFn_rel_to_swelldem": dev,
+                      "steps": r["steps"], "wall_s": r["wall_s"], "status": r["status"]})
+    with open(os.path.join(args.out, "swelling.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(srows[0]))
+        w.writeheader()
+        w.writerows(srows)
+    lines += ["", f"## Free swelling of the mortar (eps_inf {args.eps_inf:g} on mortar discs, aggregates inert; ISR kinetics 1 -> 3650 d, "
+                  f"xi fraction {next(iter(res['swelling'].values()))['xi_fraction']:.6f})", "",
+              "swelldem: its own swelling law (per-contact d_inf = g_i r_i + g_j r_j, ADR over log time, 10 steps a decade); "
+              "stock laws: radii of the mortar discs grown by the same amount over 4000 Newton steps, then relaxed.", "",
+              "| law | damage | eps_xx (1e-6) | eps_yy (1e-6) | Fn 5 % / 95 % MORTAR (kN) | ITZ (kN) | AGG (kN) | broken M/I/A | "
+              "max dFn / max Fn against swelldem | steps | wall (s) |", "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in srows:
+        lines.append(f"| {cc.LAW_TITLES[r['law']]} | {'on' if r['damage'] else 'off'} | {r['eps_xx_1e-6']:.1f} | {r['eps_yy_1e-6']:.1f} | "
+                     + " | ".join(f"{r[f'fn_p05_kN_{n}']:.2f} / {r[f'fn_p95_kN_{n}']:.2f}" for n in cc.KIND_NAMES)
+                     + f" | {r['broken_MORTAR']}/{r['broken_ITZ']}/{r['broken_AGG']} | "
+                     + ("-" if r["law"] == "swelldem" else f"{r['max_dFn_rel_to_swelldem']:.2g}") + f" | {r['steps']} | {r['wall_s']:.1f} |")
 lines.append(f"Total wall time {time.time() - t_start:.0f} s.")
 with open(os.path.join(args.out, "table.md"), "w") as f:
     f.write("\n".join(lines) + "\n")
@@ -149,9 +190,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.collections import LineCollection  # noqa: E402
 
 styles = {"swelldem": ("k", "-"), "cohfrict": ("tab:orange", "--"), "jcfpm": ("tab:green", ":"), "cpm": ("tab:purple", "-.")}
-fig, axes = plt.subplots(1, len(args.cases), figsize=(5.5 * len(args.cases), 4))
+fig, axes = plt.subplots(1, max(1, len(uniaxial)), figsize=(5.5 * max(1, len(uniaxial)), 4))
 axes = np.atleast_1d(axes)
-for ax, case in zip(axes, args.cases):
+for ax, case in zip(axes, uniaxial):
     for law in cc.LAWS:
         r = res["runs"].get(f"{law}/{case}")
         if r:
@@ -165,13 +206,16 @@ fig.savefig(os.path.join(args.out, "stress_strain.png"), dpi=120)
 plt.close(fig)
 
 colors = {"MORTAR": "tab:blue", "ITZ": "tab:red", "AGG": "tab:green"}
-for key, r in res["runs"].items():
-    law, case = key.split("/")
+maps = [(key.split("/")[0], key.split("/")[1], r["broken_contacts_end"], f"end strain {r['strain'][-1] * 1e6:.0f}e-6")
+        for key, r in res["runs"].items()]
+maps += [(key.split("/")[0], "swelling-dmg", r["broken_contacts_end"], f"free swelling, eps {r['eps_xx'] * 1e6:.0f} / {r['eps_yy'] * 1e6:.0f} e-6")
+         for key, r in res.get("swelling", {}).items() if key.endswith("/dmg")]
+for law, case, broken_end, subtitle in maps:
     fig, ax = plt.subplots(figsize=(5, 5 * assembly.height_m / assembly.width_m))
     for poly in assembly.polygons:
         q = np.asarray(poly) * 1e3
         ax.fill(q[:, 0], q[:, 1], color="0.85", lw=0.5, ec="0.5")
-    broken = np.array(r["broken_contacts_end"], dtype=int)
+    broken = np.array(broken_end, dtype=int)
     for k, name in enumerate(cc.KIND_NAMES):
         sel = broken[assembly.kind[broken] == k] if len(broken) else broken
         segs = [[(s[0], s[1]), (s[2], s[3])] for s in assembly.facet_segment_m[sel] * 1e3]
@@ -180,7 +224,7 @@ for key, r in res["runs"].items():
     ax.set_xlim(0, assembly.width_m * 1e3)
     ax.set_ylim(0, assembly.height_m * 1e3)
     ax.set_aspect("equal")
-    ax.set(xlabel="x [mm]", ylabel="y [mm]", title=f"{cc.LAW_TITLES[law]}, {case}\nend strain {r['strain'][-1] * 1e6:.0f}e-6")
+    ax.set(xlabel="x [mm]", ylabel="y [mm]", title=f"{cc.LAW_TITLES[law]}, {case}\n{subtitle}")
     if len(broken):
         ax.legend(loc="upper right", fontsize=7)
     fig.tight_layout()

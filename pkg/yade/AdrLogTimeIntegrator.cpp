@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "AdrLogTimeIntegrator.hpp"
+#include "core/BrittleContact.hpp"
 #include "core/LogTimes.hpp"
 #include "core/Validate.hpp"
 #include <algorithm>
@@ -64,6 +65,37 @@ std::vector<ContactKind*> AdrLogTimeIntegrator::kindsInScene() const
 	return std::vector<ContactKind*>(kinds.begin(), kinds.end());
 }
 
+void AdrLogTimeIntegrator::refreshKinds()
+{
+	kinds = kindsInScene();
+	for (ContactKind* k : kinds)
+		k->breaksAtEquilibrium = true;
+}
+
+long AdrLogTimeIntegrator::breakOverloaded()
+{
+	// Breaking in the transients of the fictitious dynamics would break contacts that the
+	// equilibrium never loads beyond their strength (measured: twice the breaks of a slow
+	// quasi-static loading). Checked here, at equilibrium, every overloaded contact breaks at once
+	// and the step iterates again; what remains of the step size's effect is the load increment.
+	long        n = 0;
+	const auto& L = scene->interactions->linIntrs;
+	for (size_t i = 0; i < scene->interactions->currSize; ++i) {
+		if (!L[i]->isReal()) continue;
+		auto* p = dynamic_cast<SwellPhys*>(L[i]->phys.get());
+		if (!p || p->broken) continue;
+		const core::BrittleStrength& strength = p->kind->law().params().strength;
+		if (!strength.damage) continue;
+		const core::FailureMode mode = core::BrittleContact::check(strength, p->area, p->FnHat, std::abs(p->Fs));
+		if (mode == core::FailureMode::None) continue;
+		p->broken      = true;
+		p->failureMode = int(mode);
+		++p->kind->breakEvents;
+		++n;
+	}
+	return n;
+}
+
 long AdrLogTimeIntegrator::breakEvents() const
 {
 	long n = 0;
@@ -109,7 +141,7 @@ void AdrLogTimeIntegrator::initialize()
 	nContactsSeen  = -1;
 	sessionStart   = std::chrono::steady_clock::now();
 	wallBefore     = 0;
-	kinds          = kindsInScene();
+	refreshKinds();
 	brokenSeen     = breakEvents();
 	beginPhysicalStep();
 	rebeginStep = false;
@@ -122,7 +154,7 @@ void AdrLogTimeIntegrator::initialize()
 
 void AdrLogTimeIntegrator::beginPhysicalStep()
 {
-	kinds = kindsInScene();
+	refreshKinds();
 	for (ContactKind* k : kinds) {
 		k->law().beginStep(times[step - 1], times[step]);
 		++k->stepSerial;
@@ -216,7 +248,7 @@ void AdrLogTimeIntegrator::action()
 	}
 	if (finished) return;
 	if (rebeginStep) {
-		kinds = kindsInScene();
+		refreshKinds();
 		for (ContactKind* k : kinds)
 			k->law().beginStep(times[step - 1], times[step]);
 		rebeginStep = false;
@@ -279,7 +311,7 @@ void AdrLogTimeIntegrator::action()
 	// stiffness): a step loaded by next to nothing converges there instead of never.
 	const bool atRoundOff = nReal > 0 && nFree > 0 && sumRes / nFree <= 256 * std::numeric_limits<Real>::epsilon() * posScale * sumKn / nReal;
 
-	if (nReal != nContactsSeen) kinds = kindsInScene();
+	if (nReal != nContactsSeen) refreshKinds();
 	const long breaks    = breakEvents();
 	const bool newBreaks = breaks != brokenSeen;
 	brokenSeen           = breaks;
@@ -287,7 +319,7 @@ void AdrLogTimeIntegrator::action()
 	// and a new step's stiffness call for new masses.
 	if (nReal != nContactsSeen || iterInStep == 1 || massX.size() != bodies.size()) computeMasses();
 
-	if (iterInStep >= minIterations && !newBreaks && (unbalanced <= tolerance || atRoundOff)) {
+	if (iterInStep >= minIterations && !newBreaks && (unbalanced <= tolerance || atRoundOff) && breakOverloaded() == 0) {
 		stepRoundOff.push_back(unbalanced > tolerance ? 1.0 : 0.0);
 		commitPhysicalStep();
 		controlCollider();

@@ -71,6 +71,8 @@ private:
 	void                      computeMasses();
 	std::vector<ContactKind*> kindsInScene() const;
 	long                      breakEvents() const;
+	void                      refreshKinds();    // kinds = kindsInScene(), each set to break at equilibrium only
+	long                      breakOverloaded(); // at equilibrium: breaks the overloaded contacts, returns how many
 	void                      controlCollider();
 	std::vector<ContactKind*> kinds; // the kinds of the scene's contacts, refreshed when contacts come or go
 	[[noreturn]] void         fail(const string& why) const;

@@ -61,6 +61,10 @@ public:
 	}
 
 	// --- runtime, not serialized
+	/// Set by AdrLogTimeIntegrator for its steps: intact contacts then break only when the integrator
+	/// has reached equilibrium (it checks the strengths there), never in the transients of its
+	/// fictitious dynamics. False under any other integrator: the law breaks a contact at once.
+	bool breaksAtEquilibrium = false;
 	swelldem::core::ContactKindParams params() const;
 	/// params(), validated; the error names this kind.
 	swelldem::core::ContactKindParams checkedParams() const;

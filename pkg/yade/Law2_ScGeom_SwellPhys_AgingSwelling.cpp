@@ -71,7 +71,7 @@ bool Law2_ScGeom_SwellPhys_AgingSwelling::go(shared_ptr<IGeom>& ig, shared_ptr<I
 
 	Real Fn = FnHat, Fs = FsTrial;
 	const core::BrittleStrength& strength = p->kind->law().params().strength;
-	if (!p->broken && strength.damage) {
+	if (!p->broken && strength.damage && !p->kind->breaksAtEquilibrium) {
 		const core::FailureMode mode = core::BrittleContact::check(strength, p->area, FnHat, std::abs(FsTrial));
 		if (mode != core::FailureMode::None) {
 			p->broken      = true;

@@ -11,7 +11,7 @@ namespace yade {
 
 class Law2_ScGeom_SwellPhys_AgingSwelling : public LawFunctor {
 public:
-#define SWELLDEM_LAW2_ATTRS(X) X(long, nBreaks, 0, "Contacts broken by this functor since the start [-]")
+#define SWELLDEM_LAW2_ATTRS(X) X(long, nBreaks, 0, "Contacts broken by this functor since the start; under AdrLogTimeIntegrator contacts break at equilibrium, counted by the integrator in ContactKind.breakEvents instead [-]")
 	SWELLDEM_CLASS(Law2_ScGeom_SwellPhys_AgingSwelling, LawFunctor,
 	               "Aging viscoelastic, swelling, brittle contact law of swelldem (normal and shear), over ScGeom and SwellPhys.",
 	               SWELLDEM_LAW2_ATTRS)

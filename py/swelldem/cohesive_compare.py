@@ -383,3 +383,129 @@ def calibrate_cpm(assembly, moduli, target_modulus, target_peak, deps_per_step, 
     p["modulus_per_30GPa"] = e0
     return p
 
+
+
+#: Free-swelling comparison: ISR kinetics (paper: tau_c 50 d, tau_L 100 d) from 1 to 3650 days.
+SWELL_KINETICS = "isr"
+SWELL_T_START, SWELL_T_END = 1.0, 3650.0   # [day]
+
+
+def larive_fraction(t0, t1, kinetics=SWELL_KINETICS):
+    """xi(t1) - xi(t0) of Larive's sigmoid xi(t) = (1 - e^(-t/tau_c)) / (1 + e^(-(t - tau_L)/tau_c)),
+    evaluated here directly (the reference the stock laws' radius growth is scaled by)."""
+    from .scene import KINETICS
+    tc, tl, _ = KINETICS[kinetics]
+    xi = lambda t: (1 - math.exp(-t / tc)) / (1 + math.exp(-(t - tl) / tc))  # noqa: E731
+    return xi(t1) - xi(t0)
+
+
+def disc_growth(assembly, eps_inf, pattern="mortar"):
+    """Per-disc radial swelling strain g_i [-]: 'mortar' (the cement paste swells, aggregates do
+    not: g = eps_inf on mortar discs, 0 on aggregate discs, the closest a radius growth comes to
+    ISR) or 'uniform' (every disc)."""
+    from .meso.assembly import MORTAR_MATERIAL
+    if pattern == "mortar":
+        return np.where(np.asarray(assembly.material) == MORTAR_MATERIAL, eps_inf, 0.0)
+    if pattern == "uniform":
+        return np.full(assembly.n_particles, float(eps_inf))
+    raise ValueError(f"swelldem.cohesive_compare: pattern = {pattern!r} is out of range; allowed: mortar, uniform")
+
+
+def contact_normal_forces(law, contacts):
+    """Normal force per assembly contact, tension positive [N] (0 where no interaction is left)."""
+    yade, _ = _yade()
+    O = yade.Omega()
+    fn = np.zeros(len(contacts))
+    for c, (i, j) in enumerate(contacts):
+        if not O.interactions.has(int(i), int(j)):
+            continue
+        I = O.interactions[int(i), int(j)]
+        if not I.isReal:
+            continue
+        if law == "swelldem":
+            fn[c] = I.phys.Fn
+        else:  # YADE's normalForce acts on body 2 along the normal (from 1 to 2): compression along +n
+            fn[c] = -I.phys.normalForce.dot(I.geom.normal)
+    return fn
+
+
+def free_swelling(law, assembly, moduli, eps_inf=1000e-6, pattern="mortar", damage=False, tolerance=1e-6,
+                  ramp_steps=4000, max_steps=200000, damping=0.6, steps_per_decade=10, log=None):
+    """Free swelling of the unsupported specimen to the end of ISR kinetics.
+
+    swelldem: its own swelling, every contact c = (i, j) with the per-contact ultimate swelling
+    displacement d_inf = g_i r_i + g_j r_j (:func:`disc_growth`), ISR kinetics over log time with
+    the ADR (tolerance on its unbalanced-force ratio). Stock laws (cohfrict, jcfpm): no swelling
+    of their own, so the YADE route: radii grown to r_i (1 + g_i f), f = xi(3650) - xi(1) (the
+    same swelling as ours at the end), linearly over `ramp_steps` Newton steps, then relaxed
+    until utils.unbalancedForce() < tolerance. Both rest lengths grow by the same amount, so
+    without damage the end states are the same equilibrium problem. Returns a dict (SI)."""
+    yade, W = _yade()
+    from . import measure, meso
+    from .scene import contact_kind
+    O = yade.Omega()
+    t0 = time.time()
+    g = disc_growth(assembly, eps_inf, pattern)
+    frac = larive_fraction(SWELL_T_START, SWELL_T_END)
+    ref = np.column_stack([assembly.x, assembly.y])
+    res = {"law": law, "case": f"free swelling ({pattern})", "pattern": pattern, "eps_inf": eps_inf, "xi_fraction": frac,
+           "damage": damage, "tolerance": tolerance}
+    if law == "swelldem":
+        kinds = {name: contact_kind(name, behaviour="elastic", young=moduli[name], shear_ratio=SHEAR_RATIO, damage=damage,
+                                    tensile_strength=TENSILE_STRENGTH[name], residualFrictionAngle=FRICTION_ANGLE,
+                                    kinetics=SWELL_KINETICS, swelling=True)
+                 for name in KIND_NAMES}
+        solver = W.AdrLogTimeIntegrator(tStart=SWELL_T_START, tEnd=SWELL_T_END, stepsPerDecade=steps_per_decade,
+                                        tolerance=tolerance, verbose=False)
+        ys = meso.to_yade(assembly, kinds, solver)
+        contacts = np.asarray(ys.contacts)
+        i, j = contacts[:, 0], contacts[:, 1]
+        meso.set_contact_swelling(ys, np.arange(len(contacts)), g[i] * assembly.r[i] + g[j] * assembly.r[j])
+        from .scene import run_to_end
+        run_to_end(solver)
+        res.update(steps=int(solver.totalIterations), unbalanced=float(solver.unbalanced))
+    elif law in ("cohfrict", "jcfpm"):
+        info = build(law, assembly, moduli, damping=damping, damage=damage)
+        contacts = info["contacts"]
+        O.dt = 1e-20
+        O.step()
+        O.dt = stable_dt()
+        r0 = np.array(assembly.r, dtype=float)
+        target = r0 * (1 + g * frac)
+        steps = 0
+        while steps < ramp_steps:
+            steps += 1
+            s = steps / ramp_steps
+            for k in np.flatnonzero(g):
+                O.bodies[int(k)].shape.radius = float(r0[k] + s * (target[k] - r0[k]))
+            O.step()
+        unb = yade.utils.unbalancedForce()
+        while unb > tolerance and steps < max_steps:
+            O.run(500, True)
+            steps += 500
+            unb = yade.utils.unbalancedForce()
+        res.update(steps=steps, unbalanced=float(unb), dt_s=O.dt)
+        if unb > tolerance:
+            res["status"] = f"not relaxed: unbalancedForce {unb:.3g} after {steps} steps"
+    else:
+        raise ValueError(f"swelldem.cohesive_compare: law = {law!r} has no free-swelling case; allowed: swelldem, cohfrict, jcfpm")
+    cur = np.array([[O.bodies[k].state.pos[0], O.bodies[k].state.pos[1]] for k in range(assembly.n_particles)])
+    # discs held by fewer than 2 contacts are loose in a free specimen (see measure)
+    deg = np.bincount(np.asarray(contacts).ravel(), minlength=assembly.n_particles)
+    sel = deg >= 2
+    st = measure.affine_strain(ref[sel], cur[sel])
+    fn = contact_normal_forces(law, contacts)
+    br = broken_mask(law, contacts)
+    kind = np.asarray(assembly.kind)
+    q = {}
+    for k, name in enumerate(KIND_NAMES):
+        f = fn[kind == k]
+        q[name] = [float(np.percentile(f, 5)), float(np.percentile(f, 95))] if len(f) else [float("nan")] * 2
+    res.update(eps_xx=st["eps_xx"], eps_yy=st["eps_yy"], fn_N=fn.tolist(), fn_p05_p95_N=q, broken_end=_per_kind(br, kind),
+               broken_contacts_end=np.flatnonzero(br).tolist(), wall_s=time.time() - t0, n_contacts=int(len(contacts)),
+               n_particles=int(assembly.n_particles))
+    res.setdefault("status", "finished")
+    if log:
+        log(f"{law:9s} free swelling ({pattern}{', damage' if damage else ''}): eps {st['eps_xx'] * 1e6:.2f} / {st['eps_yy'] * 1e6:.2f} e-6, "
+            f"broken {res['broken_end']['total']}, {res['steps']} steps, {res['wall_s']:.1f} s")
+    return res
