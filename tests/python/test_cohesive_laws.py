@@ -125,3 +125,28 @@ def test_free_swelling_same_as_radius_growth(tmp_path):
         assert r["status"] == "finished" and r["broken_end"]["total"] == 0
         assert abs(r["eps_xx"] / ours["eps_xx"] - 1) < 1e-4 and abs(r["eps_yy"] / ours["eps_yy"] - 1) < 1e-4, (law, r["eps_xx"], ours["eps_xx"])
         assert np.max(np.abs(np.array(r["fn_N"]) - f0)) < 1e-3 * np.max(np.abs(f0)), law
+
+
+DAMAGE_SWELL_SCRIPT = r"""
+from swelldem import meso, cohesive_compare as cc
+a = meso.generate(seed=3, width_mm=12, height_mm=12, aggregate_area_fraction=0.2, wall_gap_mm=0.3)
+moduli = cc.contact_moduli(0.38)
+out = {'swelldem': cc.free_swelling('swelldem', a, moduli, damage=True, tolerance=1e-4)['broken_end']}
+for law in ('jcfpm', 'cohfrict'):
+    out[law] = cc.free_swelling(law, a, moduli, damage=True, tolerance=1e-5)['broken_end']
+dump(out)
+"""
+
+
+def test_free_swelling_cracking_like_slow_loading(tmp_path):
+    """Free swelling of the mortar with damage: our ADR, at its default 10 steps a decade and
+    tolerance 1e-4, against the stock laws loaded slowly (radius growth over 4000 damped Newton
+    steps; 40000 gave the same count). Cracking is path-dependent and each break a threshold, so
+    counts are compared, not contacts: ours within 30 % of theirs (measured 53 against 50-51). When
+    the ADR let contacts break in its fictitious transients it gave 97 (86 at tolerance 1e-6)."""
+    from conftest import YadeRun
+    out = YadeRun(tmp_path)(DAMAGE_SWELL_SCRIPT, threads=1, timeout=300)
+    stock = 0.5 * (out["jcfpm"]["total"] + out["cohfrict"]["total"])
+    assert stock > 20, out
+    assert abs(out["swelldem"]["total"] / stock - 1) < 0.3, out
+    assert out["swelldem"]["ITZ"] > out["swelldem"]["MORTAR"], out  # debonding around the aggregates first
