@@ -38,6 +38,8 @@ public:
 	X(Real, residualFrictionAngle, 0.5, "Friction angle of broken (cohesionless Coulomb) contacts [rad]")                                              \
 	X(long, breakEvents, 0, "Contacts of this kind broken so far [-]") \
 	X(long, stepSerial, 0, "Physical step counter; a contact sets itself up for a step when its own differs (internal) [-]") \
+	X(bool, breaksAtEquilibrium, false, "Set by AdrLogTimeIntegrator: intact contacts break only when it has reached equilibrium, never in the "  \
+	                                    "transients of its fictitious dynamics; false under other integrators: the law breaks at once [-]") \
 	X(Real, shortestLag, 1e-2, "Shortest load duration the Kelvin chain resolves (set by AdrLogTimeIntegrator: first step) [day]") \
 	X(Real, longestLag, 1e5, "Longest load duration the Kelvin chain resolves (set by AdrLogTimeIntegrator: the run span) [day]")
 	SWELLDEM_CLASS(ContactKind, Serializable,
@@ -61,10 +63,6 @@ public:
 	}
 
 	// --- runtime, not serialized
-	/// Set by AdrLogTimeIntegrator for its steps: intact contacts then break only when the integrator
-	/// has reached equilibrium (it checks the strengths there), never in the transients of its
-	/// fictitious dynamics. False under any other integrator: the law breaks a contact at once.
-	bool breaksAtEquilibrium = false;
 	swelldem::core::ContactKindParams params() const;
 	/// params(), validated; the error names this kind.
 	swelldem::core::ContactKindParams checkedParams() const;
