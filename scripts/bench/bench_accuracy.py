@@ -278,13 +278,21 @@ def driver(a):
     md = []
     for scen in a.scenarios:
         tag = scen + ("-dmg" if a.damage else "")
-        rows, by_name = [], {}
+        rows, by_name, failed = [], {}, {}
 
         def get(label, c, member=None):
             name = config_name(c)
+            if name in failed:
+                return None
             if name not in by_name:
                 run_dir = os.path.join(a.out, tag, name)
-                how = run_one(a, scen, run_dir, c)
+                try:
+                    how = run_one(a, scen, run_dir, c)
+                except (RuntimeError, subprocess.TimeoutExpired) as e:
+                    # e.g. a tolerance the cracking run cannot reach within maxIterations: reported, not fatal
+                    print(f"bench_accuracy: {tag} {label:<22} {name:<22} FAILED: {e}", flush=True)
+                    failed[name] = {"label": label, "config": c, "error": str(e).splitlines()[0]}
+                    return None
                 print(f"bench_accuracy: {tag} {label:<22} {name:<22} {how}", flush=True)
                 r = load_row(run_dir, label, c)
                 by_name[name] = r
@@ -312,6 +320,9 @@ def driver(a):
                         break
                     n_try += 1
                     r = get(f"recommended {100 * t:g} %", c)
+                    if r is None:
+                        rejected.add((c["steps_per_decade"], c["tolerance"]))
+                        continue
                     r["errors"] = errors(r["res"], ref)
                     if r["label"] != f"recommended {100 * t:g} %":
                         r["label"] += f" = recommended {100 * t:g} %"
@@ -332,6 +343,9 @@ def driver(a):
         md.append(table(f"{tag} ({rows[0]['n_particles']} discs, {a.size_mm:g} x {a.size_mm:g} mm, {a.behaviour}, damage "
                         f"{'on' if a.damage else 'off'})", rows))
         md.append("")
+        for name, f in failed.items():
+            md.append(f"- {f['label']} ({name}) did not finish: {f['error']}")
+        summary["scenarios"][tag]["failed"] = failed
         default_row = next(r for r in rows if r["config"] == DEFAULT)
         for t, r in rec.items():
             if r is None:
