@@ -40,6 +40,14 @@ ap.add_argument("--max-strain-compression", type=float, default=1.5e-3)
 ap.add_argument("--rate-check", action="store_true", help="also run swelldem and cpm in tension at half the rate")
 ap.add_argument("--out", default="out/cohesive_laws")
 args = ap.parse_args(sys.argv[1:])
+for name, value, ok, allowed in (("--size-mm", args.size_mm, min(args.size_mm) > 0, "> 0 (15 x 15 mm or more places the aggregates)"),
+                                 ("--deps", args.deps, 0 < args.deps < 1e-4, "(0, 1e-4): a quasi-static strain step"),
+                                 ("--damping", args.damping, 0 <= args.damping < 1, "[0, 1)"),
+                                 ("--beta", args.beta, args.beta >= 0, ">= 0 (0: measure it)"),
+                                 ("--eps-inf", args.eps_inf, args.eps_inf > 0, "> 0"),
+                                 ("--max-strain-compression", args.max_strain_compression, args.max_strain_compression > 0, "> 0")):
+    if not ok:
+        sys.exit(f"compare_cohesive_laws.py: {name} = {value} is out of range; allowed: {allowed}")
 os.makedirs(args.out, exist_ok=True)
 t_start = time.time()
 

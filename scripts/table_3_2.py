@@ -92,8 +92,7 @@ scene.run_to_end(solver)
 fn = np.array([ys.interaction(c).phys.Fn for c in range(a.n_contacts)])
 L, A = a.distance_m, a.facet_area_m2
 eps_x, eps_y = hist["eps_x"][-1], hist["eps_y"][-1]
-xi_end = (1 - np.exp(-t_end / tau_c)) / (1 + np.exp(-(t_end - tau_l) / tau_c))
-xi_start = (1 - np.exp(-args.t_start / tau_c)) / (1 + np.exp(-(args.t_start - tau_l) / tau_c))
+xi_end, xi_start = float(scene.larive_xi(t_end, args.case)), float(scene.larive_xi(args.t_start, args.case))
 res = {
     "case": args.case, "d_inf_rule": args.d_inf_rule, "size_mm": list(args.size_mm), "seed": args.seed, "n_particles": a.n_particles, "n_contacts": a.n_contacts,
     "n_new_contacts": sum(1 for i in O.interactions if i.isReal) - a.n_contacts,
@@ -133,7 +132,7 @@ ax.semilogx(t, np.array(hist["eps_x"][1:]) * 1e6, "o-", ms=3, label="x (affine f
 ax.semilogx(t, np.array(hist["eps_y"][1:]) * 1e6, "s-", ms=3, mfc="none", label="y (affine fit)")
 ax.semilogx(t, 0.5 * (np.array(hist["eps_side_x"][1:]) + np.array(hist["eps_side_y"][1:])) * 1e6, ":", label="mean, between sides")
 tt = np.array(t)
-xi = (1 - np.exp(-tt / tau_c)) / (1 + np.exp(-(tt - tau_l) / tau_c))
+xi = scene.larive_xi(tt, args.case)
 ax.semilogx(tt, args.eps_inf * xi * 1e6, "k--", lw=0.8, label="eps_inf xi(t) (micro-macro rule)")
 ax.axhline(PAPER_EPS_FINAL * 1e6, color="r", lw=0.8, label="paper, Table 3.2: 1061")
 ax.set_xlabel("time [day]")

@@ -1,6 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "AdrLogTimeIntegrator.hpp"
-#include "core/BrittleContact.hpp"
 #include "core/LogTimes.hpp"
 #include "core/Validate.hpp"
 #include <algorithm>
@@ -83,15 +82,8 @@ long AdrLogTimeIntegrator::breakOverloaded()
 	for (size_t i = 0; i < scene->interactions->currSize; ++i) {
 		if (!L[i]->isReal()) continue;
 		auto* p = dynamic_cast<SwellPhys*>(L[i]->phys.get());
-		if (!p || p->broken) continue;
-		const core::BrittleStrength& strength = p->kind->law().params().strength;
-		if (!strength.damage) continue;
-		const core::FailureMode mode = core::BrittleContact::check(strength, p->area, p->FnHat, std::abs(p->Fs));
-		if (mode == core::FailureMode::None) continue;
-		p->broken      = true;
-		p->failureMode = int(mode);
-		++p->kind->breakEvents;
-		++n;
+		// an intact contact carries Fs = its trial shear force
+		if (p && Law2_ScGeom_SwellPhys_AgingSwelling::breakIfOverloaded(*p, p->FnHat, std::abs(p->Fs))) ++n;
 	}
 	return n;
 }

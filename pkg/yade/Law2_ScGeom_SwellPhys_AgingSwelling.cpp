@@ -53,6 +53,20 @@ void Law2_ScGeom_SwellPhys_AgingSwelling::commit(SwellPhys& p)
 	p.uRef = p.uTrial;
 }
 
+bool Law2_ScGeom_SwellPhys_AgingSwelling::breakIfOverloaded(SwellPhys& p, Real FnHat, Real shearMagnitude)
+{
+	if (p.broken) return false;
+	const core::BrittleStrength& strength = p.kind->law().params().strength;
+	if (!strength.damage) return false;
+	const core::FailureMode mode = core::BrittleContact::check(strength, p.area, FnHat, shearMagnitude);
+	if (mode == core::FailureMode::None) return false;
+	p.broken      = true;
+	p.failureMode = int(mode);
+#pragma omp atomic
+	++p.kind->breakEvents;
+	return true;
+}
+
 bool Law2_ScGeom_SwellPhys_AgingSwelling::go(shared_ptr<IGeom>& ig, shared_ptr<IPhys>& ip, Interaction* I)
 {
 	ScGeom*    geom = static_cast<ScGeom*>(ig.get());
@@ -70,19 +84,12 @@ bool Law2_ScGeom_SwellPhys_AgingSwelling::go(shared_ptr<IGeom>& ig, shared_ptr<I
 	const Real FsTrial = -sh.dot(tangentOf(geom->normal));
 
 	Real Fn = FnHat, Fs = FsTrial;
-	const core::BrittleStrength& strength = p->kind->law().params().strength;
-	if (!p->broken && strength.damage && !p->kind->breaksAtEquilibrium) {
-		const core::FailureMode mode = core::BrittleContact::check(strength, p->area, FnHat, std::abs(FsTrial));
-		if (mode != core::FailureMode::None) {
-			p->broken      = true;
-			p->failureMode = int(mode);
+	if (!p->kind->breaksAtEquilibrium && breakIfOverloaded(*p, FnHat, std::abs(FsTrial))) {
 #pragma omp atomic
-			++nBreaks;
-#pragma omp atomic
-			++p->kind->breakEvents;
-		}
+		++nBreaks;
 	}
 	if (p->broken) {
+		const core::BrittleStrength& strength = p->kind->law().params().strength;
 		core::BrittleContact::brokenForces(strength, FnHat, FsTrial, Fn, Fs);
 		if (FsTrial != 0) sh *= Fs / FsTrial; // slip beyond the Coulomb cone is permanent
 	}

@@ -25,6 +25,10 @@ public:
 	static void beginContactStep(SwellPhys& p, const Vector3r& normal);
 	/// Commits a converged step: hidden strains, committed forces, reference opening.
 	static void commit(SwellPhys& p);
+	/// Breaks an intact contact of a damaging kind whose unclamped forces exceed its strength, and
+	/// counts it in its kind; returns whether it broke. The law calls it at every iteration, or
+	/// AdrLogTimeIntegrator at equilibrium only (ContactKind.breaksAtEquilibrium).
+	static bool breakIfOverloaded(SwellPhys& p, Real FnHat, Real shearMagnitude);
 };
 
 } // namespace yade

@@ -391,12 +391,10 @@ SWELL_T_START, SWELL_T_END = 1.0, 3650.0   # [day]
 
 
 def larive_fraction(t0, t1, kinetics=SWELL_KINETICS):
-    """xi(t1) - xi(t0) of Larive's sigmoid xi(t) = (1 - e^(-t/tau_c)) / (1 + e^(-(t - tau_L)/tau_c)),
-    evaluated here directly (the reference the stock laws' radius growth is scaled by)."""
-    from .scene import KINETICS
-    tc, tl, _ = KINETICS[kinetics]
-    xi = lambda t: (1 - math.exp(-t / tc)) / (1 + math.exp(-(t - tl) / tc))  # noqa: E731
-    return xi(t1) - xi(t0)
+    """xi(t1) - xi(t0) of Larive's sigmoid (scene.larive_xi): the swelling our law applies from t0
+    to t1, by which the stock laws' radius growth is scaled."""
+    from .scene import larive_xi
+    return float(larive_xi(t1, kinetics) - larive_xi(t0, kinetics))
 
 
 def disc_growth(assembly, eps_inf, pattern="mortar"):
@@ -440,6 +438,13 @@ def free_swelling(law, assembly, moduli, eps_inf=1000e-6, pattern="mortar", dama
     same swelling as ours at the end), linearly over `ramp_steps` Newton steps, then relaxed
     until utils.unbalancedForce() < tolerance. Both rest lengths grow by the same amount, so
     without damage the end states are the same equilibrium problem. Returns a dict (SI)."""
+    for name, value, ok, allowed in (("eps_inf", eps_inf, eps_inf >= 0, ">= 0"), ("tolerance", tolerance, tolerance > 0, "> 0"),
+                                     ("ramp_steps", ramp_steps, ramp_steps >= 1, ">= 1"),
+                                     ("max_steps", max_steps, max_steps >= ramp_steps, ">= ramp_steps"),
+                                     ("damping", damping, 0 <= damping < 1, "[0, 1)"),
+                                     ("steps_per_decade", steps_per_decade, steps_per_decade > 0, "> 0")):
+        if not ok:
+            raise ValueError(f"swelldem.cohesive_compare.free_swelling: {name} = {value} is out of range; allowed: {allowed}")
     yade, W = _yade()
     from . import measure, meso
     from .scene import contact_kind
@@ -472,12 +477,13 @@ def free_swelling(law, assembly, moduli, eps_inf=1000e-6, pattern="mortar", dama
         O.dt = stable_dt()
         r0 = np.array(assembly.r, dtype=float)
         target = r0 * (1 + g * frac)
+        growing = [(O.bodies[int(k)].shape, float(r0[k]), float(target[k] - r0[k])) for k in np.flatnonzero(g)]
         steps = 0
         while steps < ramp_steps:
             steps += 1
             s = steps / ramp_steps
-            for k in np.flatnonzero(g):
-                O.bodies[int(k)].shape.radius = float(r0[k] + s * (target[k] - r0[k]))
+            for shape, r, dr in growing:
+                shape.radius = r + s * dr
             O.step()
         unb = yade.utils.unbalancedForce()
         while unb > tolerance and steps < max_steps:
@@ -490,9 +496,7 @@ def free_swelling(law, assembly, moduli, eps_inf=1000e-6, pattern="mortar", dama
     else:
         raise ValueError(f"swelldem.cohesive_compare: law = {law!r} has no free-swelling case; allowed: swelldem, cohfrict, jcfpm")
     cur = np.array([[O.bodies[k].state.pos[0], O.bodies[k].state.pos[1]] for k in range(assembly.n_particles)])
-    # discs held by fewer than 2 contacts are loose in a free specimen (see measure)
-    deg = np.bincount(np.asarray(contacts).ravel(), minlength=assembly.n_particles)
-    sel = deg >= 2
+    sel = assembly.coordination() >= 2  # discs held by fewer than 2 contacts are loose in a free specimen
     st = measure.affine_strain(ref[sel], cur[sel])
     fn = contact_normal_forces(law, contacts)
     br = broken_mask(law, contacts)

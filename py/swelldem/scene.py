@@ -12,6 +12,16 @@ KIND_IDS = {"MORTAR": 0, "ITZ": 1, "AGG": 2}
 BEHAVIOURS = ("elastic", "aging-elastic", "viscoelastic")
 
 
+def larive_xi(t, kinetics="isr"):
+    """Larive's sigmoid xi(t) = (1 - e^(-t/tau_c)) / (1 + e^(-(t - tau_L)/tau_c)) of `kinetics` (a
+    KINETICS key), t in days (scalar or array): evaluated here in numpy, as a reference independent
+    of the plugin's SwellingKinetics."""
+    import numpy as np
+    tau_c, tau_l, _ = KINETICS[kinetics]
+    t = np.asarray(t, dtype=float)
+    return (1 - np.exp(-t / tau_c)) / (1 + np.exp(-(t - tau_l) / tau_c))
+
+
 def contact_kind(name, behaviour="elastic", young=30e9, b3="mortar", shear_ratio=0.3, swell_disp_inf=0.0, kinetics="isr",
                  damage=False, tensile_strength=4e6, **extra):
     """A ContactKind with the paper's B3 q's of `b3` (a PAPER_B3 key) and kinetics of `kinetics`

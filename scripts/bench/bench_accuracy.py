@@ -394,7 +394,16 @@ ap.add_argument("--config", help="internal (worker): JSON settings")
 args = ap.parse_args(sys.argv[1:])
 args.out = os.path.abspath(args.out)
 if args.reference:
-    REFERENCE.update(json.loads(args.reference))
+    try:
+        changes = json.loads(args.reference)
+        if not isinstance(changes, dict):
+            raise json.JSONDecodeError("not an object", args.reference, 0)
+    except json.JSONDecodeError as e:
+        sys.exit(f"bench_accuracy.py: --reference = {args.reference!r} is not JSON ({e}); allowed: an object of {', '.join(REFERENCE)}")
+    bad = {k: v for k, v in changes.items() if k not in REFERENCE or not isinstance(v, (int, float)) or v <= 0}
+    if bad:
+        sys.exit(f"bench_accuracy.py: --reference = {bad} is out of range; allowed: positive values of {', '.join(REFERENCE)}")
+    REFERENCE.update(changes)
 if args.worker:
     worker(args)
 else:
