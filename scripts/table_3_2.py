@@ -58,7 +58,7 @@ d_inf = args.eps_inf * 2 * r_mean
 tau_c, tau_l, t_end = scene.KINETICS[args.case]
 kind = scene.contact_kind("MORTAR", behaviour="elastic", young=args.young, b3="mortar", swell_disp_inf=d_inf, kinetics=args.case)
 solver = W.AdrLogTimeIntegrator(tStart=args.t_start, tEnd=t_end, stepsPerDecade=args.steps_per_decade, tolerance=args.tolerance,
-                                label="solver", callback="table_3_2_record()")
+                                label="solver")
 ys = meso.to_yade(a, {"MORTAR": kind}, solver)
 if args.d_inf_rule == "contact-length":
     meso.set_contact_swelling(ys, np.arange(a.n_contacts), args.eps_inf * a.distance_m)
@@ -84,7 +84,7 @@ def table_3_2_record():
         hist[key].append(v)
 
 
-sys.modules["__main__"].table_3_2_record = table_3_2_record
+solver.stepHook = table_3_2_record
 scene.run_to_end(solver)
 
 # Contact forces at the end: free swelling of a disordered network leaves self-stress, because

@@ -44,7 +44,7 @@ O.materials.append(mat)
 kind = scene.contact_kind("MORTAR", behaviour=behaviour, young=30e9, b3="mortar", swell_disp_inf=D_INF, kinetics=args.case)
 O.bodies.append([scene.disc((0, 0), R, mat, fixed=True), scene.disc((2 * R, 0), R, mat, fixed=args.restrained)])
 solver = W.AdrLogTimeIntegrator(tStart=args.t_start, tEnd=t_end, stepsPerDecade=args.steps_per_decade, tolerance=args.tolerance,
-                                label="solver", callback="record()")
+                                label="solver")
 O.engines = scene.engines(W.Ip2_ConcreteMat_ConcreteMat_SwellPhys(mortar=kind, itz=kind, agg=kind), solver)
 history = {"times_days": [args.t_start], "strain": [0.0], "fn_N": [0.0]}
 
@@ -56,7 +56,7 @@ def record():
     history["fn_N"].append(i.phys.Fn)
 
 
-sys.modules["__main__"].record = record
+solver.stepHook = record
 scene.run_to_end(solver)
 i = O.interactions[0, 1]
 res = {"case": args.case, "steps_per_decade": args.steps_per_decade, "behaviour": behaviour, "restrained": args.restrained,

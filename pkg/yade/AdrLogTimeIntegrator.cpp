@@ -182,18 +182,43 @@ void AdrLogTimeIntegrator::commitPhysicalStep()
 		++step;
 		beginPhysicalStep();
 	}
-	if (!callback.empty()) {
+	if (stepHook_) {
 		PyGILState_STATE gil = PyGILState_Ensure();
+		bool             ok  = true;
 		try {
-			boost::python::object main = boost::python::import("__main__");
-			boost::python::exec(callback.c_str(), main.attr("__dict__"));
+			(*stepHook_)();
 		} catch (const boost::python::error_already_set&) {
 			PyErr_Print();
-			PyGILState_Release(gil);
-			fail("the callback raised a Python exception (printed above)");
+			ok = false;
 		}
 		PyGILState_Release(gil);
+		if (!ok) fail("the stepHook raised a Python exception (printed above)");
 	}
+}
+
+AdrLogTimeIntegrator::~AdrLogTimeIntegrator()
+{
+	if (!stepHook_) return;
+	if (Py_IsInitialized()) {
+		PyGILState_STATE gil = PyGILState_Ensure();
+		stepHook_.reset();
+		PyGILState_Release(gil);
+	} else
+		stepHook_.release(); // the interpreter is gone: its objects with it
+}
+
+boost::python::object AdrLogTimeIntegrator::getStepHook() const { return stepHook_ ? *stepHook_ : boost::python::object(); }
+
+void AdrLogTimeIntegrator::setStepHook(const boost::python::object& hook)
+{
+	if (hook.is_none()) {
+		stepHook_.reset();
+		return;
+	}
+	if (!PyCallable_Check(hook.ptr()))
+		throw std::invalid_argument("AdrLogTimeIntegrator.stepHook = " + string(boost::python::extract<string>(boost::python::str(hook)))
+		                            + " is out of range; allowed: a callable taking no arguments, or None");
+	stepHook_ = std::make_unique<boost::python::object>(hook);
 }
 
 void AdrLogTimeIntegrator::computeMasses()

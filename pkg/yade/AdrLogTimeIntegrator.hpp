@@ -30,7 +30,6 @@ public:
 	X(long, colliderPeriod, 20, "Run the engine labelled colliderLabel only every this many ADR iterations and at each step's start (1: always) [-]") \
 	X(string, colliderLabel, "collider", "Label of the collider engine that colliderPeriod controls [-]")                                        \
 	X(bool, verbose, true, "Print a progress line per physical step [-]")                                                                             \
-	X(string, callback, "", "Python code run after every converged physical step (in __main__) [-]")                                                  \
 	X(std::vector<Real>, times, std::vector<Real>(), "Physical times of the run, tStart first (set at the first iteration) [day]")                    \
 	X(int, step, 0, "Current physical step (1..nSteps; step i goes from times[i-1] to times[i]) [-]")                                                  \
 	X(Real, physTime, 0.0, "Physical time reached by the last converged step [day]")                                                                   \
@@ -55,13 +54,18 @@ public:
 	               "Quasi-static log-time solver with adaptive dynamic relaxation for 2D swelldem scenes (discs in the plane z = 0 "
 	               "with z translation and x, y rotations blocked). Replaces NewtonIntegrator; put it last in O.engines.",
 	               SWELLDEM_ADR_ATTRS)
-	virtual ~AdrLogTimeIntegrator() { }
+	virtual ~AdrLogTimeIntegrator();
 	void action() override;
 	void postLoad();
 	template <class C> static void pyMethods(C& cls)
 	{
 		cls.add_property("nSteps", &AdrLogTimeIntegrator::nSteps, "Number of physical steps [-]");
+		cls.add_property("stepHook", &AdrLogTimeIntegrator::getStepHook, &AdrLogTimeIntegrator::setStepHook,
+		                 "Python callable run without arguments after every converged physical step, or None. Not saved "
+		                 "with the scene: set it again after O.load [-]");
 	}
+	boost::python::object getStepHook() const;
+	void                  setStepHook(const boost::python::object& hook);
 	int nSteps() const { return times.empty() ? 0 : int(times.size()) - 1; }
 
 private:
@@ -78,6 +82,7 @@ private:
 	[[noreturn]] void         fail(const string& why) const;
 	double                    wallNow() const;
 	std::chrono::steady_clock::time_point sessionStart = std::chrono::steady_clock::now();
+	std::unique_ptr<boost::python::object> stepHook_; // null: no hook (holds a Python reference: released under the GIL)
 	bool rebeginStep = true; // the kinds' laws are not serialized: begin the current step again after O.load
 };
 

@@ -265,9 +265,7 @@ def run(test):
            "per_kind": {n: {"fn_p05_kN": [], "fn_p95_kN": [], "broken": []} for n in KIND_NAMES},
            "status": "running", "wall_s": 0.0}
     rec = _Recorder(test, assembly, ys, solver, res, test.out)
-    import __main__
-    __main__._swelldem_record = rec
-    solver.callback = "_swelldem_record()"
+    solver.stepHook = rec
     try:
         from .scene import run_to_end
         run_to_end(solver)
