@@ -134,17 +134,12 @@ bool ContactLaw::breakIfOverloaded(const ContactGeometry& g, ContactState& s) co
     return true;
 }
 
-void ContactLaw::tangent(const ContactState& s, double& kn, double& ks) const
+ContactLaw::Mode ContactLaw::mode(const ContactState& s) const
 {
     const ContactForces& tr = s.trial;
-    kn = s.kn;
-    ks = s.ks;
-    if (!tr.broken) return;
-    if (!(tr.FnHat < 0)) {
-        kn = ks = 0;
-        return;
-    }
-    if (!(std::abs(tr.Fs) < BrittleContact::shearCapacityBroken(p_.strength, tr.Fn))) ks = 0;
+    if (!tr.broken) return Mode::Intact;
+    if (!(tr.FnHat < 0)) return Mode::Open;
+    return std::abs(tr.Fs) < BrittleContact::shearCapacityBroken(p_.strength, tr.Fn) ? Mode::Sticking : Mode::Sliding;
 }
 
 void ContactLaw::commit(const ContactGeometry& g, ContactState& s) const

@@ -72,10 +72,11 @@ public:
     /// At equilibrium: breaks an intact contact of a damaging kind whose trial forces exceed its
     /// strength; returns whether it broke. Its forces follow at the next update.
     bool breakIfOverloaded(const ContactGeometry& g, ContactState& s) const;
-    /// Tangent stiffness of the contact in its current trial state [N/m]: kn'', ks'' while intact;
-    /// broken: none when open (FnHat >= 0), kn'' when closed, plus ks'' while sticking (inside the
-    /// Coulomb cone), none in shear while sliding.
-    void tangent(const ContactState& s, double& kn, double& ks) const;
+    /// The state that decides a contact's tangent stiffness in an implicit solver: kn'', ks'' while
+    /// intact or sticking, kn'' alone while sliding (its shear force stays on the Coulomb cone),
+    /// none while open (FnHat >= 0).
+    enum class Mode { Intact, Open, Sticking, Sliding };
+    Mode mode(const ContactState& s) const;
     /// Converged step: updates the hidden strains from the transmitted force increments and
     /// copies trial into committed.
     void commit(const ContactGeometry& g, ContactState& s) const;

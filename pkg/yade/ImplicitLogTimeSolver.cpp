@@ -17,7 +17,10 @@ struct ImplicitLinearSystem {
 	std::vector<std::pair<int, int>>                   graph;      // the real contacts the pattern was made for
 	std::vector<int>                                   slots;      // per contact, the 21 entries of its 6 x 6 lower triangle (-1: held)
 	std::vector<int>                                   diagSlot;   // per equation
-	std::vector<char>                                  active;     // per contact: 0 intact, 1 open, 2 closed sticking, 3 sliding
+	std::vector<char>                                  active;     // per contact: its core::ContactLaw::Mode
+	std::vector<signed char>                           side;       // per contact, this step: open, sticking or the side it slid on
+	std::vector<char>                                  turns;      // per contact, this step: times it turned (opened/closed, slip reversed)
+	long                                               stepOf = -1; // the step side and turns belong to
 	std::vector<double>                                factored;   // values of the current factor
 	SpMat                                              K;
 	Eigen::CholmodDecomposition<SpMat, Eigen::Lower>   chol;
@@ -40,17 +43,32 @@ namespace {
 	};
 	const PairTable kPairs;
 
-	// A real interaction's tangent: kn, ks [N/m] and its open / closed / sliding state.
-	char contactTangent(const Interaction* I, Real& kn, Real& ks)
+	// A real interaction's tangent kn, ks [N/m] and its state (core::ContactLaw::Mode; 0 for a stock
+	// contact). Newton's active set can cycle: a broken contact that opens, then closes, then opens,
+	// or slides on one side of the Coulomb cone, then on the other (met on 40 mm ISR damage runs).
+	// A contact that has turned twice in a step keeps its full stiffness in the tangent for the rest
+	// of the step: the iterations then converge (linearly) to the same equilibrium, YADE's residual.
+	char contactTangent(const Interaction* I, signed char& side, char& turns, Real& kn, Real& ks)
 	{
-		if (const auto* sp = dynamic_cast<const SwellPhys*>(I->phys.get())) {
-			sp->kind->law().tangent(sp->state, kn, ks);
-			if (!sp->state.trial.broken) return 0;
-			return kn == 0 ? 1 : (ks == 0 ? 3 : 2);
+		const auto* sp = dynamic_cast<const SwellPhys*>(I->phys.get());
+		if (!sp) {
+			const auto* p = static_cast<const NormShearPhys*>(I->phys.get());
+			kn = p->kn, ks = p->ks;
+			return 0;
 		}
-		const auto* p = static_cast<const NormShearPhys*>(I->phys.get());
-		kn = p->kn, ks = p->ks;
-		return 0;
+		using Mode = core::ContactLaw::Mode;
+		const Mode m = sp->kind->law().mode(sp->state);
+		if (m != Mode::Intact) {
+			// side: 2 open, +-1 sliding on either side of the cone, 3 sticking
+			const signed char now = m == Mode::Open ? 2 : (m == Mode::Sticking ? 3 : (sp->state.trial.Fs > 0 ? 1 : -1));
+			const bool        turned = side != 0 && now != side && (now == 2 || side == 2 || now == -side);
+			if (turned && turns < 2) ++turns;
+			side = now;
+		}
+		const bool full = turns >= 2;
+		kn              = (m == Mode::Open && !full) ? 0 : sp->state.kn;
+		ks              = (m == Mode::Intact || m == Mode::Sticking || full) ? sp->state.ks : 0;
+		return char(m);
 	}
 }
 
@@ -58,7 +76,7 @@ ImplicitLogTimeSolver::ImplicitLogTimeSolver()
 {
 	tolerance      = 1e-10;
 	minIterations  = 1;
-	maxIterations  = 200;
+	maxIterations  = 5000;
 	colliderPeriod = 1;
 	iterationName  = "Newton";
 }
@@ -69,6 +87,9 @@ void ImplicitLogTimeSolver::postLoad()
 {
 	LogTimeSolver::postLoad();
 	core::require(regularization >= 0 && regularization < 1e-3, "ImplicitLogTimeSolver.regularization", regularization, "0 <= regularization < 1e-3");
+	core::require(maxMove > 0 && maxMove <= 1, "ImplicitLogTimeSolver.maxMove", maxMove, "0 < maxMove <= 1");
+	core::require(newtonLimit >= 1, "ImplicitLogTimeSolver.newtonLimit", newtonLimit, ">= 1");
+	core::requireOpenInterval("ImplicitLogTimeSolver.relaxTolerance", relaxTolerance, 0, 1);
 }
 
 void ImplicitLogTimeSolver::choosePins()
@@ -184,6 +205,8 @@ void ImplicitLogTimeSolver::newtonStep()
 		S.factored.clear();
 		S.haveFactor = false;
 		S.active.assign(contacts.size(), 0);
+		S.side.assign(contacts.size(), 0);
+		S.turns.assign(contacts.size(), 0);
 		++analyses;
 	}
 	if (S.nEq == 0) return;
@@ -193,11 +216,16 @@ void ImplicitLogTimeSolver::newtonStep()
 	//    gives the law).
 	double* v = S.K.valuePtr();
 	std::fill(v, v + S.K.nonZeros(), 0.0);
+	if (S.stepOf != step) {
+		std::fill(S.side.begin(), S.side.end(), 0);
+		std::fill(S.turns.begin(), S.turns.end(), 0);
+		S.stepOf = step;
+	}
 	long changes = 0;
 	for (size_t c = 0; c < contacts.size(); ++c) {
 		const Interaction* I = contacts[c];
 		Real               kn, ks;
-		const char         state = contactTangent(I, kn, ks);
+		const char         state = contactTangent(I, S.side[c], S.turns[c], kn, ks);
 		changes += state != S.active[c];
 		S.active[c] = state;
 		if (kn == 0 && ks == 0) continue;
@@ -244,18 +272,31 @@ void ImplicitLogTimeSolver::newtonStep()
 	}
 	const Eigen::VectorXd du = S.chol.solve(r);
 	if (!du.allFinite()) fail("the linear solve gave a non-finite displacement");
+	std::vector<Real> radius(bodies.size(), 0.0); // from the contacts' geometry (the shape is not declared here)
+	for (const Interaction* I : contacts) {
+		const auto* g   = static_cast<const ScGeom*>(I->geom.get());
+		radius[I->id1] = std::max(radius[I->id1], g->radius1);
+		radius[I->id2] = std::max(radius[I->id2], g->radius2);
+	}
 	const Real dt = scene->dt;
 	for (const auto& b : bodies) {
 		if (!b) continue;
-		State*    s = b->state.get();
+		State*     s = b->state.get();
 		const int* e = &S.dofOf[3 * b->id];
-		for (int d = 0; d < 2; ++d) {
-			const Real u = e[d] >= 0 ? du[e[d]] : 0.0;
-			s->vel[d]    = u / dt;
-			s->se3.position[d] += u;
+		Vector2r   u(e[0] >= 0 ? du[e[0]] : 0.0, e[1] >= 0 ? du[e[1]] : 0.0);
+		Real       th = e[2] >= 0 ? du[e[2]] : 0.0;
+		// A mechanism's direction has next to no stiffness (the regularization), so its Newton move
+		// is unbounded: it goes at most maxMove radii per iteration, as if it slid or rolled.
+		if (radius[b->id] > 0) {
+			const Real cap = maxMove * radius[b->id];
+			if (u.norm() > cap) u *= cap / u.norm();
+			if (std::abs(th) > maxMove) th = th > 0 ? maxMove : -maxMove;
 		}
-		const Real th = e[2] >= 0 ? du[e[2]] : 0.0;
-		s->angVel     = Vector3r(0, 0, th / dt);
+		for (int d = 0; d < 2; ++d) {
+			s->vel[d] = u[d] / dt;
+			s->se3.position[d] += u[d];
+		}
+		s->angVel = Vector3r(0, 0, th / dt);
 		if (th != 0) {
 			s->se3.orientation = Quaternionr(Eigen::AngleAxis<Real>(th, Vector3r::UnitZ())) * s->se3.orientation;
 			s->se3.orientation.normalize();
@@ -267,17 +308,34 @@ void ImplicitLogTimeSolver::action()
 {
 	if (!startIteration()) return;
 	const Balance b = measureBalance();
-	struct Track {
+	struct Track { // at every exit: held bodies moved since the last action
 		ImplicitLogTimeSolver* self;
 		~Track() { self->trackHeldBodies(); }
 	} track { this };
-	switch (settleStep(b, b.ratio <= tolerance || b.atRoundOff)) {
-		case StepOutcome::Committed: return;
-		case StepOutcome::Broke: // the next pass computes the forces without the broken contacts
-			zeroVelocities(scene);
-			return;
-		case StepOutcome::Continue: newtonStep(); return;
+	const StepOutcome out = settleStep(b, b.ratio <= tolerance || b.atRoundOff);
+	if (out != StepOutcome::Continue || iterInStep == 1) relaxing = false, newtonSince = iterInStep, relaxPhase = 0;
+	if (out == StepOutcome::Committed) return;
+	if (out == StepOutcome::Broke) { // the next pass computes the forces without the broken contacts
+		zeroVelocities(scene);
+		return;
 	}
+	if (!relaxing && iterInStep - newtonSince > newtonLimit) {
+		relaxing = true;
+		zeroVelocities(scene);
+		relax.start(scene);
+		++relaxPhase;
+	}
+	if (relaxing) {
+		if (b.ratio > relaxTolerance * std::pow(1e-2, relaxPhase - 1)) {
+			if (b.nReal != relax.nContactsSeen) relax.computeMasses(scene, 1.0);
+			relax.leapfrog(scene, relax.damping(scene, 1.8));
+			++relaxationIterations;
+			return;
+		}
+		relaxing    = false;
+		newtonSince = iterInStep;
+	}
+	newtonStep();
 }
 
 } // namespace yade

@@ -6,10 +6,13 @@
 // force path), solves with a CHOLMOD supernodal Cholesky factor of the tangent stiffness and moves
 // the bodies by du through their velocities (ScGeom integrates the shear from them). A linear
 // step converges in one solve plus the pass that checks it; damage and the broken contacts'
-// open / closed / sliding states make it an active-set Newton iteration. The factor is reused
+// open / sticking / sliding states make it an active-set Newton iteration (core::ContactLaw::mode),
+// and where that active set does not settle within newtonLimit iterations (a contact at the kink
+// between open and closed, a disc rolling between sliding contacts) dynamic relaxation takes the
+// step down to relaxTolerance and Newton finishes it. The factor is reused
 // while the tangent is unchanged and its symbolic analysis while the contact graph is.
 #pragma once
-#include "LogTimeSolver.hpp"
+#include "DynamicRelaxation.hpp"
 #include <memory>
 
 namespace yade {
@@ -22,9 +25,18 @@ public:
 	X(Real, regularization, 1e-12, swelldem_attr::Setting,                                                                                                \
 	  "Relative diagonal shift of the tangent for local mechanisms (a disc held by one contact, open cracks): it changes "                         \
 	  "the iteration path, never the converged equilibrium, which is YADE's residual at the tolerance [-]")                                         \
+	X(Real, maxMove, 0.05, swelldem_attr::Setting,                                                                                                       \
+	  "Largest move of a disc in one iteration, as a fraction of its radius: a disc that nothing holds in some direction (a mechanism: "         \
+	  "sliding or open contacts only) moves at most this far per iteration, until it meets a neighbour or an equilibrium [-]")                    \
+	X(long, newtonLimit, 20, swelldem_attr::Setting,                                                                                                    \
+	  "Newton iterations without reaching the tolerance after which the step continues by dynamic relaxation (a broken contact's "               \
+	  "open / closed / sliding state that does not settle under Newton) [-]")                                                                       \
+	X(Real, relaxTolerance, 1e-4, swelldem_attr::Setting,                                                                                                \
+	  "Unbalanced-force ratio at which dynamic relaxation hands back to Newton; each further relaxation of the same round goes 100x lower [-]")  \
+	X(long, relaxationIterations, 0, swelldem_attr::Result, "Iterations done by dynamic relaxation so far [-]")                                      \
 	X(long, factorizations, 0, swelldem_attr::Result, "Numeric Cholesky factorizations so far [-]")                                                    \
 	X(long, analyses, 0, swelldem_attr::Result, "Symbolic analyses (contact graph changes) so far [-]")                                               \
-	X(long, activeChanges, 0, swelldem_attr::Result, "Contacts whose open / closed / sliding state changed in the last iteration [-]")              \
+	X(long, activeChanges, 0, swelldem_attr::Result, "Contacts whose state (intact, open, sticking, sliding) changed in the last iteration [-]")              \
 	X(std::vector<int>, pinnedDofs, std::vector<int>(), swelldem_attr::Internal,                                                                       \
 	  "Degrees of freedom held to remove a free specimen's rigid-body modes, as 3 x body id + axis (0 x, 1 y) [-]")
 	SWELLDEM_CLASS(ImplicitLogTimeSolver, LogTimeSolver,
@@ -43,6 +55,10 @@ private:
 	void                                  choosePins();
 	void                                  newtonStep();
 	std::unique_ptr<ImplicitLinearSystem> sys;
+	DynamicRelaxation                     relax;        // not saved: a reload goes on by Newton
+	bool                                  relaxing    = false;
+	long                                  newtonSince = 0; // iteration of the step at which Newton (re)started
+	int                                   relaxPhase  = 0; // relaxations in the current round
 };
 
 } // namespace yade

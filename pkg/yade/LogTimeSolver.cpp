@@ -178,6 +178,7 @@ void LogTimeSolver::beginPhysicalStep()
 	for (ContactKind* k : kinds)
 		++k->stepSerial;
 	iterInStep = 0;
+	roundStart = 0;
 	zeroVelocities(scene);
 }
 
@@ -303,16 +304,18 @@ LogTimeSolver::StepOutcome LogTimeSolver::settleStep(const Balance& b, bool conv
 			stepRoundOff.push_back(b.ratio > tolerance ? 1.0 : 0.0);
 			commitPhysicalStep();
 			out = StepOutcome::Committed;
-		} else
-			out = StepOutcome::Broke;
+		} else {
+			out        = StepOutcome::Broke;
+			roundStart = iterInStep;
+		}
 	}
 	controlCollider();
 	if (out == StepOutcome::Committed) return out;
 	if (std::isnan(b.ratio) || b.ratio > divergenceRatio)
 		fail("diverged: unbalanced-force ratio " + num(b.ratio) + " > divergenceRatio " + num(divergenceRatio));
-	if (iterInStep >= maxIterations)
-		fail("no equilibrium after maxIterations = " + std::to_string(maxIterations) + " iterations (unbalanced-force ratio " + num(b.ratio)
-		     + ", tolerance " + num(tolerance) + ")");
+	if (iterInStep - roundStart >= maxIterations)
+		fail("no equilibrium after maxIterations = " + std::to_string(maxIterations) + " iterations" + (roundStart > 0 ? " since the last breaks" : "")
+		     + " (unbalanced-force ratio " + num(b.ratio) + ", tolerance " + num(tolerance) + ")");
 	return out;
 }
 

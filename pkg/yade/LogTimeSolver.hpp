@@ -25,7 +25,9 @@ public:
 	  "Equilibrium when the unbalanced-force ratio is below: mean resultant force on free bodies / mean contact force, a contact "                    \
 	  "counting at least with the load its step offset imposes, kn'' |du''| + ks'' |du_s''|, and external loads counting too [-]")                   \
 	X(long, minIterations, 2, swelldem_attr::Setting, "Iterations per physical step at least [-]")                                                     \
-	X(long, maxIterations, 200000, swelldem_attr::Setting, "Iterations per physical step at most; beyond, the run stops with a message [-]")           \
+	X(long, maxIterations, 200000, swelldem_attr::Setting,                                                                                               \
+	  "Iterations to an equilibrium at most, counted from the step's start and again after each round of breaks; beyond, the run stops "         \
+	  "with a message [-]")                                                                                                                          \
 	X(Real, divergenceRatio, 1e6, swelldem_attr::Setting, "An unbalanced-force ratio above this (or NaN) stops the run as diverged [-]")               \
 	X(Real, relativeForceFloor, 1e-3, swelldem_attr::Setting,                                                                                            \
 	  "The mean contact force of the ratio is at least this fraction of its largest value in the run [-]")                                           \
@@ -46,6 +48,7 @@ public:
 	  "1 where a step ended at the round-off limit of the positions above the tolerance, else 0 [-]")                                                \
 	X(std::vector<Real>, stepWall, std::vector<Real>(), swelldem_attr::Result, "Wall time at the end of each converged step since the start [s]")    \
 	X(long, brokenSeen, 0, swelldem_attr::Result, "Break events seen so far (sum over kinds) [-]")                                                     \
+	X(long, roundStart, 0, swelldem_attr::Internal, "Iteration of the step at which the last round of breaks happened [-]")                          \
 	X(Real, forceScaleMax, 0.0, swelldem_attr::Internal, "Largest mean contact force of the run so far [N]")                                          \
 	X(Real, externalScale, 0.0, swelldem_attr::Internal, "Mean external load on the free bodies, measured at the step's first iteration [N]")        \
 	X(long, nRealSeen, -1, swelldem_attr::Internal, "Real contacts at the last iteration [-]")                                                        \
@@ -67,6 +70,7 @@ public:
 		                 "with the scene: set it again after O.load [-]");
 	}
 	int                   nSteps() const { return times.empty() ? 0 : int(times.size()) - 1; }
+	static const long     kParallelBodies = 4000; // below this many discs a loop is cheaper than waking OpenMP's threads
 	boost::python::object getStepHook() const;
 	void                  setStepHook(const boost::python::object& hook);
 
@@ -93,7 +97,6 @@ protected:
 	[[noreturn]] void fail(const string& why) const;
 	static void       zeroVelocities(Scene* scene);
 	static const unsigned kNeed2D = State::DOF_Z | State::DOF_RX | State::DOF_RY;
-	static const long     kParallelBodies = 4000; // below this many discs a loop is cheaper than waking OpenMP's threads
 	std::vector<ContactKind*> kinds;              // the kinds of the scene's contacts, refreshed when contacts come or go
 	const char*               iterationName = "ADR"; // what one iteration is, for the progress lines
 

@@ -1,0 +1,39 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Adaptive dynamic relaxation (Underwood) on a 2D swelldem scene: fictitious masses from a
+// Gershgorin bound of the contact stiffness, damping from a Rayleigh quotient of a local stiffness
+// estimate, a damped leapfrog step per iteration. AdrLogTimeIntegrator reaches every equilibrium
+// with it; ImplicitLogTimeSolver uses it where Newton's active set does not settle.
+#pragma once
+#include "LogTimeSolver.hpp"
+
+namespace yade {
+
+class DynamicRelaxation {
+public:
+	std::vector<Real> massX, massY, inertiaZ; // fictitious masses and rotational inertia per body
+	std::vector<Real> prevForce;              // residual of the previous iteration, 3 per body (x, y, torque z)
+	std::vector<Real> initialPos;             // positions when it started, 2 per body, for the damping estimate
+	long              nContactsSeen = -1;     // real contacts when the masses were computed
+
+	/// Starts from rest at the current positions.
+	void start(const Scene* scene);
+	/// A new physical step starts from rest.
+	void rest() { std::fill(prevForce.begin(), prevForce.end(), 0.0); }
+	void computeMasses(const Scene* scene, Real massSafety);
+	/// Damping c [1/dt] from the Rayleigh quotient, at most maxDamping / dt.
+	Real damping(Scene* scene, Real maxDamping) const; // (YADE's force getter is not const)
+	void leapfrog(Scene* scene, Real c);
+	template <class Archive> void serialize(Archive& ar, unsigned)
+	{
+		ar& boost::serialization::make_nvp("massX", massX);
+		ar& boost::serialization::make_nvp("massY", massY);
+		ar& boost::serialization::make_nvp("inertiaZ", inertiaZ);
+		ar& boost::serialization::make_nvp("prevForce", prevForce);
+		ar& boost::serialization::make_nvp("initialPos", initialPos);
+		ar& boost::serialization::make_nvp("nContactsSeen", nContactsSeen);
+	}
+};
+
+} // namespace yade
+BOOST_CLASS_IMPLEMENTATION(yade::DynamicRelaxation, boost::serialization::object_serializable)
+BOOST_CLASS_TRACKING(yade::DynamicRelaxation, boost::serialization::track_never)
