@@ -129,10 +129,12 @@ kinds = {"MORTAR": dem.contact_kind("MORTAR", swell_disp_inf=0.8e-6),
          "ITZ": dem.contact_kind("ITZ", b3="itz", swell_disp_inf=0.8e-6),
          "AGG": dem.contact_kind("AGG", young=60e9, swelling=True)}
 solver = W.AdrLogTimeIntegrator(tStart=1, tEnd=10, stepsPerDecade=2, tolerance=1e-4, verbose=False)
+O.tags["description"], O.tags["params"] = "batch job 7", "seed=2"   # as yade-batch sets them
+tags_before = dict(O.tags)
 ys = dem.to_yade(a, kinds, solver)
 out = {"n_bodies": len(O.bodies), "n_real": sum(1 for i in O.interactions if i.isReal), "counts": ys.counts,
        "cohesive_after": ys.ip2.cohesive, "n_materials": len(O.materials), "n_aggregates": a.n_aggregates,
-       "n_contacts": a.n_contacts}
+       "n_contacts": a.n_contacts, "tags_before": tags_before, "tags_after": dict(O.tags)}
 out["body_agg_id"] = [O.bodies[i].material.aggregateId for i in range(a.n_particles)]
 out["body_r"] = [O.bodies[i].shape.radius for i in range(a.n_particles)]
 out["body_xy"] = [[O.bodies[i].state.pos[0], O.bodies[i].state.pos[1], O.bodies[i].state.pos[2]] for i in range(a.n_particles)]
@@ -190,6 +192,13 @@ def test_one_body_per_particle_at_the_assembly_positions(concrete_scene):
     np.testing.assert_array_equal(xyz[:, 1], a.y)
     assert np.all(xyz[:, 2] == 0)
     assert res["blocked"] == ["zXY"]
+
+
+def test_scene_builder_keeps_the_batch_tags(concrete_scene):
+    """The scene builder resets O but keeps O.tags: a yade-batch job's id, description and params."""
+    res = concrete_scene[0]
+    assert res["tags_after"]["description"] == "batch job 7" and res["tags_after"]["params"] == "seed=2"
+    assert res["tags_after"] == res["tags_before"]
 
 
 def test_one_material_per_aggregate(concrete_scene):
