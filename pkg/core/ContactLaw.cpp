@@ -84,9 +84,11 @@ void ContactLaw::beginContactStep(const ContactGeometry& g, ContactState& s) con
     s.ks = alpha * s.kn;
     s.duOffsetN = kinetics_ ? swellingDisplacementInf(g) * dxi_ : 0.0;
     s.duOffsetS = 0;
+    // A contact new to this law (created without one) starts with no creep history.
+    if (s.gamma.empty()) s.gamma.assign(hiddenStateSize(), 0.0);
     if (creep_) {
-        require(s.gamma.size() == hiddenStateSize(), "hidden state size", static_cast<double>(s.gamma.size()),
-                std::to_string(hiddenStateSize()) + " (call ContactLaw::initState)");
+        require(s.gamma.size() == hiddenStateSize(), "hidden creep state size of a contact", static_cast<double>(s.gamma.size()),
+                std::to_string(hiddenStateSize()) + " (the kind's Kelvin chain changed while its contacts had a creep history)");
         const double sigmaN = s.committed.Fn / A;
         const double sigmaS = s.committed.Fs / (alpha * A);
         s.duOffsetN += L * SolidificationCreep::inelasticStrainIncrement(factors_, sigmaN, s.gammaNormal());
@@ -97,20 +99,52 @@ void ContactLaw::beginContactStep(const ContactGeometry& g, ContactState& s) con
 
 const ContactForces& ContactLaw::trial(const ContactGeometry& g, ContactState& s, double duN, double duS) const
 {
+    return settle(g, s, s.committed.FnHat + s.kn * (duN - s.duOffsetN), s.committed.Fs + s.ks * (duS - s.duOffsetS), true);
+}
+
+const ContactForces& ContactLaw::update(const ContactGeometry& g, ContactState& s, double opening, double FsTrial,
+                                        bool breakNow) const
+{
+    s.opening = opening;
+    return settle(g, s, s.committed.FnHat + s.kn * ((opening - s.openingRef) - s.duOffsetN), FsTrial, breakNow);
+}
+
+const ContactForces& ContactLaw::settle(const ContactGeometry& g, ContactState& s, double FnHat, double FsTrial,
+                                        bool breakNow) const
+{
     ContactForces& tr = s.trial;
-    const double FnHat = s.committed.FnHat + s.kn * (duN - s.duOffsetN);
-    const double FsTrial = s.committed.Fs + s.ks * (duS - s.duOffsetS);
     tr.FnHat = FnHat;
     if (!tr.broken) {
         tr.Fn = FnHat;
         tr.Fs = FsTrial;
-        const FailureMode m = BrittleContact::check(p_.strength, g.area, FnHat, FsTrial);
-        if (m == FailureMode::None) return tr;
-        tr.broken = true;
-        tr.mode = m;
+        if (!breakNow || !breakIfOverloaded(g, s)) return tr;
     }
     BrittleContact::brokenForces(p_.strength, FnHat, FsTrial, tr.Fn, tr.Fs);
     return tr;
+}
+
+bool ContactLaw::breakIfOverloaded(const ContactGeometry& g, ContactState& s) const
+{
+    ContactForces& tr = s.trial;
+    if (tr.broken) return false;
+    const FailureMode m = BrittleContact::check(p_.strength, g.area, tr.FnHat, tr.Fs);
+    if (m == FailureMode::None) return false;
+    tr.broken = true;
+    tr.mode = m;
+    return true;
+}
+
+void ContactLaw::tangent(const ContactState& s, double& kn, double& ks) const
+{
+    const ContactForces& tr = s.trial;
+    kn = s.kn;
+    ks = s.ks;
+    if (!tr.broken) return;
+    if (!(tr.FnHat < 0)) {
+        kn = ks = 0;
+        return;
+    }
+    if (!(std::abs(tr.Fs) < BrittleContact::shearCapacityBroken(p_.strength, tr.Fn))) ks = 0;
 }
 
 void ContactLaw::commit(const ContactGeometry& g, ContactState& s) const
@@ -123,6 +157,7 @@ void ContactLaw::commit(const ContactGeometry& g, ContactState& s) const
         SolidificationCreep::commit(factors_, sS, dsS, s.gammaShear());
     }
     s.committed = s.trial;
+    s.openingRef = s.opening;
 }
 
 }  // namespace swelldem::core

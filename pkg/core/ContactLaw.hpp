@@ -58,15 +58,31 @@ public:
     double swellingDisplacementInf(const ContactGeometry& g) const;
 
     /// Per-contact step set-up (after beginStep): stiffnesses and constant offsets; trial := committed.
+    /// A state without hidden variables (a new contact) gets them, zero.
     void beginContactStep(const ContactGeometry& g, ContactState& s) const;
     /// Trial forces for displacement increments since the step start [m]; strength checks;
     /// a break is kept for the rest of the step. Returns s.trial.
     const ContactForces& trial(const ContactGeometry& g, ContactState& s, double duN, double duS) const;
+    /// The path of a solver that carries the shear force itself (YADE's rotated incremental shear
+    /// vector): normal opening u [m] (the step's increment is u - s.openingRef, kept in s.opening) and
+    /// trial shear force FsTrial [N]. An intact contact breaks here only when breakNow (else see
+    /// breakIfOverloaded). Returns s.trial.
+    const ContactForces& update(const ContactGeometry& g, ContactState& s, double opening, double FsTrial,
+                                bool breakNow) const;
+    /// At equilibrium: breaks an intact contact of a damaging kind whose trial forces exceed its
+    /// strength; returns whether it broke. Its forces follow at the next update.
+    bool breakIfOverloaded(const ContactGeometry& g, ContactState& s) const;
+    /// Tangent stiffness of the contact in its current trial state [N/m]: kn'', ks'' while intact;
+    /// broken: none when open (FnHat >= 0), kn'' when closed, plus ks'' while sticking (inside the
+    /// Coulomb cone), none in shear while sliding.
+    void tangent(const ContactState& s, double& kn, double& ks) const;
     /// Converged step: updates the hidden strains from the transmitted force increments and
     /// copies trial into committed.
     void commit(const ContactGeometry& g, ContactState& s) const;
 
 private:
+    const ContactForces& settle(const ContactGeometry& g, ContactState& s, double FnHat, double FsTrial,
+                                bool breakNow) const;
     ContactKindParams p_;
     std::unique_ptr<SolidificationCreep> creep_;
     std::unique_ptr<B3Compliance> b3_;

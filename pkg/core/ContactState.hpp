@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // Per-contact state: a committed part (converged at the end of the last physical step) and a trial
 // part that the equilibrium iterations of the current step overwrite, plus the step's constant
-// incremental data set by ContactLaw::beginContactStep.
+// incremental data set by ContactLaw::beginContactStep. It is all a solver needs from a contact for
+// a step: within the step an intact contact is linear, Fn = committed.FnHat + kn (duN - duOffsetN),
+// Fs = committed.Fs + ks (duS - duOffsetS) (ContactLaw::tangent gives a broken one's tangent).
 #pragma once
 
 #include "core/BrittleContact.hpp"
@@ -30,6 +32,9 @@ struct ContactState {
     double ks = 0;          ///< incremental shear stiffness ks'' [N/m]
     double duOffsetN = 0;   ///< inelastic + swelling normal displacement increment [m] (opening > 0)
     double duOffsetS = 0;   ///< inelastic shear displacement increment [m]
+    // normal opening (centre distance minus the radii; the caller's measure) [m]:
+    double openingRef = 0;  ///< at the end of the last converged step (at creation: stress-free)
+    double opening = 0;     ///< in the current trial
 
     double* gammaNormal() { return gamma.data(); }
     double* gammaShear() { return gamma.data() + gamma.size() / 2; }

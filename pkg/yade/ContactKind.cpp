@@ -8,39 +8,9 @@ namespace core = swelldem::core;
 
 core::ContactKindParams ContactKind::params() const
 {
-	core::ContactKindParams p;
-	if (behaviour == "elastic") p.behaviour = core::Behaviour::Elastic;
-	else if (behaviour == "aging-elastic")
-		p.behaviour = core::Behaviour::AgingElastic;
-	else if (behaviour == "viscoelastic")
-		p.behaviour = core::Behaviour::Viscoelastic;
-	else
-		throw std::invalid_argument("swelldem: ContactKind(" + name + ").behaviour = '" + behaviour
-		                            + "' is out of range; allowed: 'elastic', 'aging-elastic', 'viscoelastic'");
-	p.contactModulus = young;
-	p.shearRatio     = shearRatio;
-	p.b3.q1          = q1;
-	p.b3.q2          = q2;
-	p.b3.q3          = q3;
-	p.b3.q4          = q4;
-	p.chain.unitsPerDecade        = kelvinUnitsPerDecade;
-	p.swelling                    = swelling;
-	p.swellingDisplacementInf     = swellDispInf;
-	p.tauC                        = tauC;
-	p.tauL                        = tauL;
-	p.strength.damage             = damage;
-	p.strength.tensileStrength    = tensileStrength;
-	p.strength.shearFailure       = shearFailure;
-	p.strength.cohesion           = cohesion;
-	p.strength.frictionAngle      = frictionAngle;
-	p.strength.residualFrictionAngle = residualFrictionAngle;
-	return p;
-}
-
-core::ContactKindParams ContactKind::checkedParams() const
-{
 	try {
-		core::ContactKindParams p = params();
+		core::ContactKindParams p = table;
+		p.behaviour               = core::parseBehaviour(behaviour);
 		p.validate();
 		return p;
 	} catch (const std::invalid_argument& e) {
@@ -50,39 +20,74 @@ core::ContactKindParams ContactKind::checkedParams() const
 
 void ContactKind::postLoad()
 {
-	checkedParams(); // bad input fails here, before any work starts
-	std::lock_guard<std::mutex> lock(lawMutex_);
-	lawReady_.store(nullptr, std::memory_order_release);
-	law_.reset(); // parameters changed: the law is rebuilt on next use
+	params(); // bad input fails here, before any work starts
+	changed_.store(true, std::memory_order_release);
 }
 
-void ContactKind::prepare(Real shortestLag, Real longestLag)
+void ContactKind::install(std::unique_ptr<core::ContactLaw> law)
+{
+	if (law_) retired_.push_back(std::move(law_));
+	law_ = std::move(law);
+	lawReady_.store(law_.get(), std::memory_order_release);
+}
+
+void ContactKind::beginStep(Real shortestLag_, Real longestLag_, Real tPrev, Real t)
 {
 	std::lock_guard<std::mutex> lock(lawMutex_);
-	this->shortestLag = shortestLag;
-	this->longestLag  = longestLag;
-	law_ = std::make_unique<core::ContactLaw>(checkedParams(), shortestLag, longestLag);
-	lawReady_.store(law_.get(), std::memory_order_release);
+	const core::ContactKindParams p = params();
+	if (!law_ || p != law_->params() || shortestLag_ != shortestLag || longestLag_ != longestLag) {
+		auto law = std::make_unique<core::ContactLaw>(p, shortestLag_, longestLag_);
+		if (law_ && stepSerial > 0 && law->hiddenStateSize() != law_->hiddenStateSize())
+			throw std::invalid_argument("swelldem: ContactKind '" + name + "': this change gives its Kelvin chain "
+			                            + std::to_string(law->hiddenStateSize() / 2) + " units instead of "
+			                            + std::to_string(law_->hiddenStateSize() / 2)
+			                            + " while its contacts have a creep history; allowed during a run: changes that keep the chain "
+			                              "(behaviour, kelvinUnitsPerDecade and the lags as they were)");
+		shortestLag = shortestLag_;
+		longestLag  = longestLag_;
+		install(std::move(law));
+	}
+	changed_.store(false, std::memory_order_release);
+	law_->beginStep(tPrev, t);
 }
 
 core::ContactLaw& ContactKind::law()
 {
-	// Contacts call this from InteractionLoop's threads; the law is built once, under the lock.
-	if (core::ContactLaw* ready = lawReady_.load(std::memory_order_acquire)) return *ready;
+	// Under a log-time solver (stepSerial > 0) a change waits for its next step.
+	core::ContactLaw* ready = lawReady_.load(std::memory_order_acquire);
+	if (ready && (stepSerial > 0 || !changed_.load(std::memory_order_acquire))) return *ready;
 	std::lock_guard<std::mutex> lock(lawMutex_);
-	if (!law_) {
-		law_ = std::make_unique<core::ContactLaw>(checkedParams(), shortestLag, longestLag);
-		// Without the log-time integrator there is one open-ended step at age 28 days; after
-		// O.load the integrator begins its current step again before any contact commits.
-		law_->beginStep(28.0, 28.0);
+	if (!law_ || (stepSerial == 0 && changed_.load(std::memory_order_acquire))) {
+		changed_.store(false, std::memory_order_release);
+		auto law = std::make_unique<core::ContactLaw>(params(), shortestLag, longestLag);
+		law->beginStep(28.0, 28.0);
+		install(std::move(law));
 	}
-	lawReady_.store(law_.get(), std::memory_order_release);
 	return *law_;
 }
 
-Real ContactKind::compliance(Real t, Real tPrime) const { return core::B3Compliance(params().b3).J(t, tPrime); }
+namespace {
+	std::mutex functorErrorMutex;
+	string     functorError;
+}
 
-Real ContactKind::modulus(Real t) const { return behaviour == "elastic" ? young : core::B3Compliance(params().b3).E(t); }
+void recordFunctorError(const string& what)
+{
+	std::lock_guard<std::mutex> lock(functorErrorMutex);
+	if (functorError.empty()) functorError = what;
+}
+
+string takeFunctorError()
+{
+	std::lock_guard<std::mutex> lock(functorErrorMutex);
+	string e;
+	e.swap(functorError);
+	return e;
+}
+
+Real ContactKind::compliance(Real t, Real tPrime) const { return core::B3Compliance(table.b3).J(t, tPrime); }
+
+Real ContactKind::modulus(Real t) const { return behaviour == "elastic" ? table.contactModulus : core::B3Compliance(table.b3).E(t); }
 
 std::vector<Real>
 ContactKind::evaluateHistory(const std::vector<Real>& times, const std::vector<Real>& openings, Real area, Real length, Real swellDispInf) const

@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // Parameters shared by all contacts of one kind (MORTAR, ITZ, AGG): YADE's face of the physics
-// core's ContactKindParams, plus the core ContactLaw built from them (not serialized: rebuilt on load).
-// Every SwellPhys points to its kind; AdrLogTimeIntegrator starts each physical step on each kind.
+// core's ContactKindParams (its table of per-kind parameters, SWELLDEM_KIND_PARAMETERS, becomes
+// this class's Python attributes and saved fields), plus the core ContactLaw built from them.
+// The law is not saved: the log-time solvers build it at their first step and after O.load, and
+// rebuild it at the next step when a parameter was changed; under another integrator it is
+// built once, at first use.
 #pragma once
 #include "compat/Plugin.hpp"
 #include "core/ContactLaw.hpp"
@@ -11,41 +14,33 @@
 
 namespace yade {
 
+/// Errors met by swelldem's functors inside YADE's parallel loops, where nothing may throw: the
+/// first one is kept here and raised by the log-time solvers after the loop (takeFunctorError).
+void   recordFunctorError(const string& what);
+string takeFunctorError();
+
 class ContactKind : public Serializable {
 public:
 #define SWELLDEM_CONTACT_KIND_ATTRS(X)                                                                                                                         \
-	X(string, name, "MORTAR", "Name of the kind (MORTAR, ITZ, AGG or any label) [-]")                                                                      \
-	X(int, kindId, 0, "Index of the kind, reported per contact in SwellPhys.kindId (0 MORTAR, 1 ITZ, 2 AGG by convention) [-]")                         \
-	X(string, behaviour, "elastic", "'elastic' (constant modulus young), 'aging-elastic' (E(t) = 1/J(t + 0.01 d, t) of the B3 q's, incremental) "        \
-	                                "or 'viscoelastic' (aging, B3 solidification theory with a Kelvin chain) [-]")                                        \
-	X(Real, young, 30e9, "Contact modulus E_c of 'elastic' kinds; kn = E_c A / L [Pa]")                                                                  \
-	X(Real, shearRatio, 0.3, "alpha = ks / kn [-]")                                                                                                        \
-	X(Real, q1, 6.7e-12, "B3 instantaneous compliance q1 [1/Pa] (paper Table 3.3: 1e-6/MPa = 1e-12/Pa)")                                                  \
-	X(Real, q2, 108.1e-12, "B3 aging viscoelastic compliance q2 [1/Pa]")                                                                                   \
-	X(Real, q3, 44.2e-12, "B3 non-aging viscoelastic compliance q3 [1/Pa]")                                                                                \
-	X(Real, q4, 14.3e-12, "B3 flow compliance q4 [1/Pa]")                                                                                                  \
-	X(Real, kelvinUnitsPerDecade, 1.0, "Kelvin units per decade of retardation time (cost against accuracy) [1/decade]")                                  \
-	X(Real, swellDispInf, 0.0, "Ultimate free swelling displacement d_inf of the kind's contacts (0: none; per-contact override "                         \
-	                           "SwellPhys.swellDispInf) [m]")                                                                                              \
-	X(Real, tauC, 50.0, "Larive characteristic time tau_c [day]")                                                                                          \
-	X(Real, tauL, 100.0, "Larive latency time tau_L [day]")                                                                                                \
-	X(bool, swelling, false, "Evaluate swelling kinetics for this kind (set when any of its contacts swells) [-]")                                       \
-	X(bool, damage, false, "Brittle failure on: tension cut-off f_t A, optional Mohr-Coulomb shear failure [-]")                                          \
-	X(Real, tensileStrength, 4e6, "f_t; a contact breaks when Fn > f_t A [Pa]")                                                                           \
-	X(bool, shearFailure, false, "Mohr-Coulomb shear failure of intact contacts, |Fs| > c A + tan(phi) max(-Fn, 0) (the paper keeps it off) [-]")       \
-	X(Real, cohesion, 0.0, "Cohesion c of intact contacts [Pa]")                                                                                           \
-	X(Real, frictionAngle, 0.5, "Friction angle phi of intact contacts [rad]")                                                                            \
-	X(Real, residualFrictionAngle, 0.5, "Friction angle of broken (cohesionless Coulomb) contacts [rad]")                                              \
-	X(long, breakEvents, 0, "Contacts of this kind broken so far [-]") \
-	X(long, stepSerial, 0, "Physical step counter; a contact sets itself up for a step when its own differs (internal) [-]") \
-	X(bool, breaksAtEquilibrium, false, "Set by AdrLogTimeIntegrator: intact contacts break only when it has reached equilibrium, never in the "  \
-	                                    "transients of its fictitious dynamics; false under other integrators: the law breaks at once [-]") \
-	X(Real, shortestLag, 1e-2, "Shortest load duration the Kelvin chain resolves (set by AdrLogTimeIntegrator: first step) [day]") \
-	X(Real, longestLag, 1e5, "Longest load duration the Kelvin chain resolves (set by AdrLogTimeIntegrator: the run span) [day]")
-	SWELLDEM_CLASS(ContactKind, Serializable,
-	               "Parameters shared by all contacts of one kind (MORTAR, ITZ or AGG): stiffness, aging viscoelasticity (B3), "
-	               "swelling kinetics (Larive) and brittle strength.",
-	               SWELLDEM_CONTACT_KIND_ATTRS)
+	X(string, name, "MORTAR", swelldem_attr::Setting, "Name of the kind (MORTAR, ITZ, AGG or any label) [-]")                                            \
+	X(int, kindId, 0, swelldem_attr::Setting, "Index of the kind, reported per contact in SwellPhys.kindId (0 MORTAR, 1 ITZ, 2 AGG by convention) [-]") \
+	X(string, behaviour, "elastic", swelldem_attr::Setting,                                                                                              \
+	  "'elastic' (constant modulus young), 'aging-elastic' (E(t) = 1/J(t + 0.01 d, t) of the B3 q's, incremental) "                                    \
+	  "or 'viscoelastic' (aging, B3 solidification theory with a Kelvin chain) [-]")                                                                   \
+	X(long, breakEvents, 0, swelldem_attr::Result, "Contacts of this kind broken so far [-]")                                                            \
+	X(long, stepSerial, 0, swelldem_attr::Result, "Physical steps begun on this kind; a contact sets itself up for a step when its own differs [-]")    \
+	X(bool, breaksAtEquilibrium, false, swelldem_attr::Result,                                                                                           \
+	  "Set by the log-time solvers: intact contacts break only at equilibrium; false under other integrators: the law breaks at once [-]")            \
+	X(Real, shortestLag, 1e-2, swelldem_attr::Result, "Shortest load duration the Kelvin chain resolves (set by the log-time solvers: first step) [day]") \
+	X(Real, longestLag, 1e5, swelldem_attr::Result, "Longest load duration the Kelvin chain resolves (set by the log-time solvers: the run span) [day]")
+	SWELLDEM_CLASS_WITH_TABLE(ContactKind, Serializable,
+	                          "Parameters shared by all contacts of one kind (MORTAR, ITZ or AGG): stiffness, aging viscoelasticity (B3), "
+	                          "swelling kinetics (Larive) and brittle strength. A change to a parameter during a run takes effect "
+	                          "from the next physical step.",
+	                          SWELLDEM_CONTACT_KIND_ATTRS, SWELLDEM_KIND_PARAMETERS)
+	/// The per-kind parameters (all but behaviour), as the physics core takes them.
+	swelldem::core::ContactKindParams table;
+
 	ContactKind() { }
 	virtual ~ContactKind() { }
 	void postLoad();
@@ -53,7 +48,7 @@ public:
 	{
 		cls.def("compliance", &ContactKind::compliance, "B3 J(t, t') of the kind's q's, t and t' in days [1/Pa].");
 		cls.def("modulus", &ContactKind::modulus, "Modulus of the kind at age t [day]: young, or E(t) = 1/J(t + 0.01, t) for aging kinds [Pa].");
-		cls.def("chainSize", &ContactKind::chainSize, "Number of Kelvin units per direction of the prepared law (0 unless viscoelastic) [-].");
+		cls.def("chainSize", &ContactKind::chainSize, "Number of Kelvin units per direction of the kind's law (0 unless viscoelastic) [-].");
 		cls.def("evaluateHistory", &ContactKind::evaluateHistory,
 		        (boost::python::arg("times"), boost::python::arg("openings"), boost::python::arg("area"), boost::python::arg("length"),
 		         boost::python::arg("swellDispInf") = -1.0),
@@ -62,23 +57,29 @@ public:
 		        "returns the normal force [N] at each time (tension positive).");
 	}
 
-	// --- runtime, not serialized
+	/// The parameters with the behaviour, validated; the error names this kind.
 	swelldem::core::ContactKindParams params() const;
-	/// params(), validated; the error names this kind.
-	swelldem::core::ContactKindParams checkedParams() const;
-	/// Builds the core law for an analysis with these lags [day] (AdrLogTimeIntegrator calls it).
-	void prepare(Real shortestLag, Real longestLag);
-	/// The core law; built with default lags on first use if the integrator has not prepared it.
+	/// Log-time solvers, at a step's start (outside any parallel region): (re)builds the law when
+	/// there is none, the lags changed or a parameter changed since it was built, then begins the
+	/// step [tPrev, t] [day]. Throws std::invalid_argument for bad parameters or a Kelvin chain
+	/// that would change under contacts with a creep history.
+	void beginStep(Real shortestLag, Real longestLag, Real tPrev, Real t);
+	/// The law for the contacts (thread-safe); under another integrator it is built at first use
+	/// and after a parameter changed, with one open-ended step at age 28 days. Throws
+	/// std::invalid_argument for bad parameters.
 	swelldem::core::ContactLaw& law();
-	Real compliance(Real t, Real tPrime) const;
-	Real modulus(Real t) const;
-	int  chainSize();
+	Real              compliance(Real t, Real tPrime) const;
+	Real              modulus(Real t) const;
+	int               chainSize();
 	std::vector<Real> evaluateHistory(const std::vector<Real>& times, const std::vector<Real>& openings, Real area, Real length, Real swellDispInf) const;
 
 private:
-	std::unique_ptr<swelldem::core::ContactLaw>  law_;
-	std::atomic<swelldem::core::ContactLaw*>     lawReady_ { nullptr }; // lock-free read once built
-	std::mutex                                   lawMutex_;
+	std::unique_ptr<swelldem::core::ContactLaw>              law_;
+	std::vector<std::unique_ptr<swelldem::core::ContactLaw>> retired_; // a replaced law may still be read by a running loop
+	std::atomic<swelldem::core::ContactLaw*>                 lawReady_ { nullptr };
+	std::mutex                                               lawMutex_;
+	std::atomic<bool>                                        changed_ { false }; // a parameter was set since the law was built
+	void install(std::unique_ptr<swelldem::core::ContactLaw> law);
 };
 
 } // namespace yade

@@ -12,28 +12,31 @@ void Ip2_ConcreteMat_ConcreteMat_SwellPhys::go(const shared_ptr<Material>& m1, c
 	if (I->phys) return;
 	const auto* a = static_cast<const ConcreteMat*>(m1.get());
 	const auto* b = static_cast<const ConcreteMat*>(m2.get());
-	const shared_ptr<ContactKind>& kind = (a->isMortar() && b->isMortar()) ? mortar : (a->aggregateId == b->aggregateId ? agg : itz);
-	const char* which = (a->isMortar() && b->isMortar()) ? "mortar" : (a->aggregateId == b->aggregateId ? "agg" : "itz");
-	if (!kind) throw std::invalid_argument(string("Ip2_ConcreteMat_ConcreteMat_SwellPhys.") + which + " is not set: give it a ContactKind");
-	const auto* geom = dynamic_cast<const ScGeom*>(I->geom.get());
-	if (!geom) throw std::runtime_error("Ip2_ConcreteMat_ConcreteMat_SwellPhys: the contact geometry must be ScGeom (Ig2_Sphere_Sphere_ScGeom)");
-
-	swelldem::core::ContactLaw& law = kind->law();
-	shared_ptr<SwellPhys>       p(new SwellPhys);
+	const bool  mortar = a->isMortar() && b->isMortar(), sameAggregate = !mortar && a->aggregateId == b->aggregateId;
+	const shared_ptr<ContactKind>& kind = mortar ? this->mortar : (sameAggregate ? agg : itz);
+	const auto*                    geom = dynamic_cast<const ScGeom*>(I->geom.get());
+	// An Ip2 may not throw (YADE calls it inside its parallel loops): a contact it cannot make is
+	// left without physics and the log-time solvers raise the error after the loop.
+	if (!kind || !geom) {
+		recordFunctorError(!kind ? string("Ip2_ConcreteMat_ConcreteMat_SwellPhys.") + (mortar ? "mortar" : (sameAggregate ? "agg" : "itz"))
+		                                   + " is not set (contact of bodies " + std::to_string(I->id1) + " and " + std::to_string(I->id2)
+		                                   + "); allowed: a ContactKind"
+		                         : string("Ip2_ConcreteMat_ConcreteMat_SwellPhys: the contact geometry must be ScGeom (Ig2_Sphere_Sphere_ScGeom)"));
+		return;
+	}
+	shared_ptr<SwellPhys> p(new SwellPhys);
 	p->kind                   = kind;
 	p->kindId                 = kind->kindId;
 	p->length                 = geom->refR1 + geom->refR2 - geom->penetrationDepth;
 	p->area                   = 2 * std::min(geom->refR1, geom->refR2) * thickness;
-	p->uRef                   = -geom->penetrationDepth;
-	p->uTrial                 = p->uRef;
-	p->kn                     = law.stepModulus() * p->area / p->length;
-	p->ks                     = kind->shearRatio * p->kn;
-	p->tangensOfFrictionAngle = std::tan(kind->residualFrictionAngle);
-	p->gamma.assign(law.hiddenStateSize(), 0.0);
+	p->tangensOfFrictionAngle = std::tan(kind->table.strength.residualFrictionAngle);
+	swelldem::core::ContactState& s = p->state;
+	// Stiffness and step data come with the contact's first physical step (Law2).
+	s.openingRef = s.opening = -geom->penetrationDepth;
 	if (!cohesive) {
 		// A contact made during the run is cohesionless and stress-free when the discs just touch.
-		p->broken = p->committedBroken = true;
-		p->uRef = p->uTrial = 0;
+		s.committed.broken = s.trial.broken = true;
+		s.openingRef = s.opening = 0;
 	}
 	I->phys = p;
 }

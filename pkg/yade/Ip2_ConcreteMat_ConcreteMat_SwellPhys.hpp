@@ -10,11 +10,11 @@ namespace yade {
 class Ip2_ConcreteMat_ConcreteMat_SwellPhys : public IPhysFunctor {
 public:
 #define SWELLDEM_IP2_ATTRS(X)                                                                                                                                  \
-	X(shared_ptr<ContactKind>, mortar, shared_ptr<ContactKind>(), "Kind of mortar-mortar contacts (MORTAR) [-]")                                        \
-	X(shared_ptr<ContactKind>, itz, shared_ptr<ContactKind>(), "Kind of mortar-aggregate and aggregate-aggregate contacts (ITZ) [-]")                   \
-	X(shared_ptr<ContactKind>, agg, shared_ptr<ContactKind>(), "Kind of contacts inside one aggregate (AGG) [-]")                                       \
-	X(Real, thickness, 1.0, "Out-of-plane thickness b of the 2D model; fallback facet area 2 min(r1, r2) b when no Laguerre facet is given [m]")      \
-	X(bool, cohesive, true, "Contacts created while true are intact (bonded) and stress-free as created; while false they are born broken "   \
+	X(shared_ptr<ContactKind>, mortar, shared_ptr<ContactKind>(), swelldem_attr::Setting, "Kind of mortar-mortar contacts (MORTAR) [-]")                                        \
+	X(shared_ptr<ContactKind>, itz, shared_ptr<ContactKind>(), swelldem_attr::Setting, "Kind of mortar-aggregate and aggregate-aggregate contacts (ITZ) [-]")                   \
+	X(shared_ptr<ContactKind>, agg, shared_ptr<ContactKind>(), swelldem_attr::Setting, "Kind of contacts inside one aggregate (AGG) [-]")                                       \
+	X(Real, thickness, 1.0, swelldem_attr::Setting, "Out-of-plane thickness b of the 2D model; fallback facet area 2 min(r1, r2) b when no Laguerre facet is given [m]")      \
+	X(bool, cohesive, true, swelldem_attr::Setting, "Contacts created while true are intact (bonded) and stress-free as created; while false they are born broken "   \
 	                             "(compression and friction only) and stress-free when the discs just touch [-]")
 	SWELLDEM_CLASS(Ip2_ConcreteMat_ConcreteMat_SwellPhys, IPhysFunctor,
 	               "Creates SwellPhys between two ConcreteMat particles. The facet area is set to the fallback 2 min(r1, r2) "

@@ -15,6 +15,7 @@
 	X(SwellPhys)                                                                                                                                           \
 	X(Ip2_ConcreteMat_ConcreteMat_SwellPhys)                                                                                                               \
 	X(Law2_ScGeom_SwellPhys_AgingSwelling)                                                                                                                 \
+	X(LogTimeSolver)                                                                                                                                       \
 	X(AdrLogTimeIntegrator)                                                                                                                                \
 	X(SwelldemAbiProbe)
 

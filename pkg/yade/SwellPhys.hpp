@@ -1,61 +1,105 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // Physics of one concrete contact: FrictPhys (so YADE's tools that read kn, ks, normalForce and
-// shearForce keep working) plus the contact's kind, facet, strength state and creep state, kept as
-// a committed part (end of the last converged physical step) and a trial part (current iteration).
+// shearForce keep working) plus the contact's kind, facet and its state. The state (forces,
+// committed and trial, creep variables, the step's stiffness and offsets) is the physics core's
+// ContactState, held here once: the law updates it in place, Python reads it through the
+// properties below, and it is saved with the scene.
 #pragma once
 #include "ContactKind.hpp"
+
+namespace boost::serialization {
+// The core stays free of boost: its state is serialized from here.
+template <class Archive> void serialize(Archive& ar, swelldem::core::ContactForces& f, unsigned)
+{
+	int mode = int(f.mode);
+	ar& make_nvp("Fn", f.Fn);
+	ar& make_nvp("Fs", f.Fs);
+	ar& make_nvp("FnHat", f.FnHat);
+	ar& make_nvp("broken", f.broken);
+	ar& make_nvp("mode", mode);
+	f.mode = swelldem::core::FailureMode(mode);
+}
+template <class Archive> void serialize(Archive& ar, swelldem::core::ContactState& s, unsigned)
+{
+	ar& make_nvp("committed", s.committed);
+	ar& make_nvp("trial", s.trial);
+	ar& make_nvp("gamma", s.gamma);
+	ar& make_nvp("kn", s.kn);
+	ar& make_nvp("ks", s.ks);
+	ar& make_nvp("duOffsetN", s.duOffsetN);
+	ar& make_nvp("duOffsetS", s.duOffsetS);
+	ar& make_nvp("openingRef", s.openingRef);
+	ar& make_nvp("opening", s.opening);
+}
+} // namespace boost::serialization
+BOOST_CLASS_IMPLEMENTATION(swelldem::core::ContactForces, boost::serialization::object_serializable)
+BOOST_CLASS_TRACKING(swelldem::core::ContactForces, boost::serialization::track_never)
+BOOST_CLASS_IMPLEMENTATION(swelldem::core::ContactState, boost::serialization::object_serializable)
+BOOST_CLASS_TRACKING(swelldem::core::ContactState, boost::serialization::track_never)
 
 namespace yade {
 
 class SwellPhys : public FrictPhys {
 public:
 #define SWELLDEM_SWELL_PHYS_ATTRS(X)                                                                                                                           \
-	X(shared_ptr<ContactKind>, kind, shared_ptr<ContactKind>(), "Kind of the contact (shared parameters) [-]")                                           \
-	X(int, kindId, 0, "kind.kindId, copied for fast queries (0 MORTAR, 1 ITZ, 2 AGG by convention) [-]")                                               \
-	X(Real, area, 0.0, "Contact facet area A_c (Laguerre facet length x thickness b) [m2]")                                                             \
-	X(Real, length, 0.0, "Centre distance L of the stress-free configuration; kn = E A / L [m]")                                                         \
-	X(Real, swellDispInf, -1.0, "Per-contact ultimate swelling displacement d_inf; < 0: the kind's ContactKind.swellDispInf [m]")                      \
-	X(Real, uRef, 0.0, "Normal opening (-penetrationDepth) at which the committed force was reached: the stress-free opening at "                       \
-	                   "creation, then the converged opening of each physical step [m]")                                                                   \
-	X(bool, broken, false, "Broken in the current iteration (committed or during this step) [-]")                                                       \
-	X(int, failureMode, 0, "How it broke: 0 intact, 1 tension, 2 shear [-]")                                                                            \
-	X(Real, Fn, 0.0, "Transmitted normal force, tension positive [N]")                                                                                  \
-	X(Real, Fs, 0.0, "Transmitted shear force along the 2D tangent ez x normal [N]")                                                                    \
-	X(Real, FnHat, 0.0, "Unclamped normal force; > 0 on a broken contact measures how far its crack is open [N]")                                       \
-	X(bool, committedBroken, false, "Broken at the end of the last converged step [-]")                                                                 \
-	X(int, committedMode, 0, "failureMode at the end of the last converged step [-]")                                                                   \
-	X(Real, committedFn, 0.0, "Normal force at the end of the last converged step [N]")                                                                 \
-	X(Real, committedFs, 0.0, "Shear force at the end of the last converged step [N]")                                                                  \
-	X(Real, committedFnHat, 0.0, "Unclamped normal force at the end of the last converged step [N]")                                                   \
-	X(std::vector<Real>, gamma, std::vector<Real>(), "Hidden Kelvin-chain strains, normal units then shear units (empty unless viscoelastic) [-]")    \
-	X(long, stepSerial, -1, "Physical step the step data below belong to (ContactKind.stepSerial) [-]")                                              \
-	X(Real, duOffsetN, 0.0, "Inelastic + swelling normal displacement increment of the current step (opening > 0) [m]")                              \
-	X(Real, duOffsetS, 0.0, "Inelastic shear displacement increment of the current step [m]")                                                        \
-	X(Real, shearHatX, 0.0, "Unclamped shear force vector of the current iteration, x [N]")                                                           \
-	X(Real, shearHatY, 0.0, "Unclamped shear force vector of the current iteration, y [N]")                                                           \
-	X(Real, shearHatZ, 0.0, "Unclamped shear force vector of the current iteration, z [N]")                                                           \
-	X(Real, uTrial, 0.0, "Normal opening in the current iteration [m]")
+	X(shared_ptr<ContactKind>, kind, shared_ptr<ContactKind>(), swelldem_attr::Setting, "Kind of the contact (shared parameters) [-]")                   \
+	X(int, kindId, 0, swelldem_attr::Result, "kind.kindId when the contact was made (0 MORTAR, 1 ITZ, 2 AGG by convention) [-]")                        \
+	X(Real, area, 0.0, swelldem_attr::Setting, "Contact facet area A_c (Laguerre facet length x thickness b) [m2]")                                     \
+	X(Real, length, 0.0, swelldem_attr::Setting, "Centre distance L of the stress-free configuration; kn = E A / L [m]")                                 \
+	X(Real, swellDispInf, -1.0, swelldem_attr::Setting,                                                                                                  \
+	  "Per-contact ultimate swelling displacement d_inf; < 0: the kind's ContactKind.swellDispInf [m]")                                                  \
+	X(long, stepSerial, -1, swelldem_attr::Result, "Physical step (ContactKind.stepSerial) the contact's step data belong to [-]")                      \
+	X(swelldem::core::ContactState, state, swelldem::core::ContactState(), swelldem_attr::Internal, "The contact's state (physics core) [-]")
 	SWELLDEM_CLASS(SwellPhys, FrictPhys,
 	               "Concrete contact of swelldem: aging viscoelastic (B3, solidification theory), swelling (Larive) and brittle. "
-	               "Forces follow YADE's FrictPhys convention (normalForce, shearForce vectors) and are mirrored as signed "
+	               "Forces follow YADE's FrictPhys convention (normalForce, shearForce vectors) and are given as signed "
 	               "scalars Fn (tension positive) and Fs.",
 	               SWELLDEM_SWELL_PHYS_ATTRS)
 	SwellPhys() { createIndex(); }
 	virtual ~SwellPhys() { }
-	void postLoad() { }
+	void postLoad();
 	template <class C> static void pyMethods(C& cls)
 	{
+		using S = swelldem::core::ContactState;
 		cls.add_property("kindName", &SwellPhys::kindName, "Name of the contact's kind [-]");
 		cls.add_property("swellingDispInf", &SwellPhys::effectiveSwellDispInf, "Ultimate swelling displacement in force (own or the kind's) [m]");
 		cls.add_property("fnMax", &SwellPhys::fnMax, "Tensile strength of the contact f_t A (inf when damage is off) [N]");
+		cls.add_property("Fn", +[](const SwellPhys& p) { return p.state.trial.Fn; }, "(result) Transmitted normal force, tension positive [N]");
+		cls.add_property("Fs", +[](const SwellPhys& p) { return p.state.trial.Fs; }, "(result) Transmitted shear force along the 2D tangent ez x normal [N]");
+		cls.add_property("FnHat", +[](const SwellPhys& p) { return p.state.trial.FnHat; },
+		                 "(result) Unclamped normal force; > 0 on a broken contact measures how far its crack is open [N]");
+		cls.add_property("broken", +[](const SwellPhys& p) { return p.state.trial.broken; }, "(result) Broken (committed or during this step) [-]");
+		cls.add_property("failureMode", +[](const SwellPhys& p) { return int(p.state.trial.mode); }, "(result) How it broke: 0 intact, 1 tension, 2 shear [-]");
+		cls.add_property("committedFn", +[](const SwellPhys& p) { return p.state.committed.Fn; }, "(result) Normal force at the end of the last converged step [N]");
+		cls.add_property("committedFs", +[](const SwellPhys& p) { return p.state.committed.Fs; }, "(result) Shear force at the end of the last converged step [N]");
+		cls.add_property("committedBroken", +[](const SwellPhys& p) { return p.state.committed.broken; }, "(result) Broken at the end of the last converged step [-]");
+		cls.add_property("gamma", +[](const SwellPhys& p) { return std::vector<Real>(p.state.gamma.begin(), p.state.gamma.end()); },
+		                 "(result) Hidden Kelvin-chain strains, normal units then shear units (empty unless viscoelastic) [-]");
+		cls.add_property("uRef", +[](const SwellPhys& p) { return p.state.openingRef; },
+		                 "(result) Normal opening (-penetrationDepth) at the end of the last converged step; at creation the stress-free one [m]");
+		cls.add_property("duOffsetN", +[](const SwellPhys& p) { return p.state.duOffsetN; }, +[](SwellPhys& p, Real v) { p.state.duOffsetN = v; },
+		                 "Step data: inelastic + swelling normal displacement increment of the current step (opening > 0); set by the step "
+		                 "set-up, writable for experiments [m]");
+		cls.add_property("duOffsetS", +[](const SwellPhys& p) { return p.state.duOffsetS; }, +[](SwellPhys& p, Real v) { p.state.duOffsetS = v; },
+		                 "Step data: inelastic shear displacement increment of the current step; writable for experiments [m]");
+		// kn, ks: the step stiffnesses live in the state; YADE's own kn, ks members mirror them for YADE's tools.
+		cls.add_property("kn", +[](const SwellPhys& p) { return p.state.kn; }, +[](SwellPhys& p, Real v) { p.state.kn = p.NormPhys::kn = v; },
+		                 "Step data: incremental normal stiffness kn'' of the current step; writable for experiments [N/m]");
+		cls.add_property("ks", +[](const SwellPhys& p) { return p.state.ks; }, +[](SwellPhys& p, Real v) { p.state.ks = p.NormShearPhys::ks = v; },
+		                 "Step data: incremental shear stiffness ks'' of the current step; writable for experiments [N/m]");
+		(void)sizeof(S);
 	}
 	string kindName() const { return kind ? kind->name : string(); }
-	Real   effectiveSwellDispInf() const { return swellDispInf >= 0 ? swellDispInf : (kind ? kind->swellDispInf : 0.0); }
-	Real   fnMax() const { return kind && kind->damage ? kind->tensileStrength * area : std::numeric_limits<Real>::infinity(); }
-	swelldem::core::ContactGeometry geometry() const;
-	// Copies between this object and the core's ContactState (at step set-up and commit only).
-	void toCore(swelldem::core::ContactState& s) const;
-	void fromCore(const swelldem::core::ContactState& s);
+	Real   effectiveSwellDispInf() const { return swellDispInf >= 0 ? swellDispInf : (kind ? kind->table.swellingDisplacementInf : 0.0); }
+	Real   fnMax() const { return kind && kind->table.strength.damage ? kind->table.strength.tensileStrength * area : std::numeric_limits<Real>::infinity(); }
+	swelldem::core::ContactGeometry geometry() const
+	{
+		swelldem::core::ContactGeometry g;
+		g.area                    = area;
+		g.length                  = length;
+		g.swellingDisplacementInf = swellDispInf;
+		return g;
+	}
 	SWELLDEM_CLASS_INDEX(SwellPhys, FrictPhys)
 };
 

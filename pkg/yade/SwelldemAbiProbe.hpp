@@ -10,12 +10,12 @@ namespace yade {
 class SwelldemAbiProbe : public GlobalEngine {
 public:
 #define SWELLDEM_ABI_PROBE_ATTRS(X)                                                                                                                            \
-	X(long, nCalls, 0, "Number of times action() ran [-]")                                                                                                  \
-	X(long, lastIter, -1, "O.iter seen by the last action() [-]")                                                                                          \
-	X(Real, lastTime, -1, "O.time seen by the last action() [s of YADE time]")                                                                             \
-	X(Real, lastDt, -1, "O.dt seen by the last action() [s of YADE time]")                                                                                 \
-	X(Real, totalMass, 0, "Sum of the bodies' State.mass at the last action() [kg]")                                                                      \
-	X(Real, kineticEnergy, 0, "Translational kinetic energy of the bodies at the last action() [J]")
+	X(long, nCalls, 0, swelldem_attr::Result, "Number of times action() ran [-]")                                                                                                  \
+	X(long, lastIter, -1, swelldem_attr::Result, "O.iter seen by the last action() [-]")                                                                                          \
+	X(Real, lastTime, -1, swelldem_attr::Result, "O.time seen by the last action() [s of YADE time]")                                                                             \
+	X(Real, lastDt, -1, swelldem_attr::Result, "O.dt seen by the last action() [s of YADE time]")                                                                                 \
+	X(Real, totalMass, 0, swelldem_attr::Result, "Sum of the bodies' State.mass at the last action() [kg]")                                                                      \
+	X(Real, kineticEnergy, 0, swelldem_attr::Result, "Translational kinetic energy of the bodies at the last action() [J]")
 	SWELLDEM_CLASS(SwelldemAbiProbe, GlobalEngine,
 	               "Reads scene, bodies, materials, interactions, engines and functors through swelldem's own declarations of "
 	               "YADE's classes. Diagnostic only: it changes nothing in the scene.",

@@ -161,14 +161,14 @@ TEST(Validation, ContactKindGeometryAndLaw)
 {
     ContactKindParams p;
     p.contactModulus = 0;
-    expectInvalid([&] { ContactLaw l(p); }, "contactModulus E_c [Pa]", "0", "0 < contactModulus");
+    expectInvalid([&] { ContactLaw l(p); }, "young (contact modulus E_c) [Pa]", "0", "0 < young");
     p.contactModulus = 1e10;
     p.shearRatio = -0.2;
     expectInvalid([&] { ContactLaw l(p); }, "shearRatio alpha [-]", "-0.2", "0 < shearRatio");
     p.shearRatio = 0.2;
     p.swelling = true;
     p.swellingDisplacementInf = -1e-6;
-    expectInvalid([&] { ContactLaw l(p); }, "swellingDisplacementInf [m]", "-1e-06", "0 <= swellingDisplacementInf");
+    expectInvalid([&] { ContactLaw l(p); }, "swellDispInf [m]", "-1e-06", "0 <= swellDispInf");
     p.swellingDisplacementInf = 1e-6;
     p.swellingStrainInf = 1e-3;
     expectInvalid([&] { ContactLaw l(p); }, "swellingStrainInf [-]", "0.001", "give one of the two");
@@ -177,6 +177,7 @@ TEST(Validation, ContactKindGeometryAndLaw)
     expectInvalid([&] { ContactLaw l(p); }, "tau_c [day]", "-5", "0 < tau_c");
     p.tauC = 50;
     p.behaviour = Behaviour::Viscoelastic;
+    p.b3.q1 = 0;
     expectInvalid([&] { ContactLaw l(p); }, "q1 [1/Pa]", "0", "0 < q1");
     p.b3 = B3Params::mortarM6();
     p.chain.unitsPerDecade = 100;
@@ -190,9 +191,13 @@ TEST(Validation, ContactKindGeometryAndLaw)
     law.initState(s);
     expectInvalid([&] { law.beginContactStep(ContactGeometry{0, 1e-3}, s); }, "area [m2]", "0", "0 < area");
     expectInvalid([&] { law.beginContactStep(ContactGeometry{1e-3, -1}, s); }, "length [m]", "-1", "0 < length");
-    ContactState fresh;  // not initialised: wrong hidden state size
-    expectInvalid([&] { law.beginContactStep(ContactGeometry{1e-3, 1e-3}, fresh); }, "hidden state size", "0",
-                  "call ContactLaw::initState");
+    ContactState fresh;  // a contact new to the law gets its hidden variables
+    law.beginContactStep(ContactGeometry{1e-3, 1e-3}, fresh);
+    EXPECT_EQ(fresh.gamma.size(), law.hiddenStateSize());
+    ContactState other;  // hidden variables of another chain: refused
+    other.gamma.assign(law.hiddenStateSize() + 2, 0.0);
+    expectInvalid([&] { law.beginContactStep(ContactGeometry{1e-3, 1e-3}, other); }, "hidden creep state size of a contact",
+                  std::to_string(law.hiddenStateSize() + 2), "Kelvin chain changed");
     expectInvalid([&] { law.setTemperatureHistory({0.0}, {-3.0}); }, "temperature[0] [K]", "-3", "0 < temperature[0]");
 }
 

@@ -68,25 +68,72 @@ namespace swelldem_py {
 } // namespace swelldem_py
 } // namespace yade
 
-// ---- attribute list expansion; an attribute list is   #define ATTRS(X) X(type, name, default, "doc [unit]") ...
-#define SWELLDEM_ATTR_MEMBER(type, name, def, doc) type name = def;
-#define SWELLDEM_ATTR_SERIALIZE(type, name, def, doc) ar& boost::serialization::make_nvp(#name, name);
-#define SWELLDEM_ATTR_SET(type, name, def, doc)                                                                                                                \
+// ---- attribute lists: #define ATTRS(X) X(type, name, default, flags, "doc [unit]") ...
+// flags say what an attribute is to the user: a setting (writable; validated by postLoad, which a
+// Python assignment calls, restoring the old value if it throws), a result (read-only in Python),
+// an internal (saved but not shown in Python); Transient ones are not saved.
+namespace yade {
+namespace swelldem_attr {
+	constexpr unsigned Setting = 0, Result = 1, Internal = 2, Transient = 4;
+}
+namespace swelldem_py {
+	// Classes may define afterLoad(): run once a saved object is read back (not on Python assignments).
+	template <class T> auto afterLoadImpl(T& t, int) -> decltype(t.afterLoad(), void()) { t.afterLoad(); }
+	template <class T> void afterLoadImpl(T&, long) { }
+	template <class T> void afterLoad(T& t) { afterLoadImpl(t, 0); }
+	// Assignment from Python: validate through postLoad; a refused value leaves the object as it was.
+	template <class C, class T> void setChecked(C& self, T& member, const T& value)
+	{
+		T old  = member;
+		member = value;
+		try {
+			self.postLoad();
+		} catch (...) {
+			member = old;
+			throw;
+		}
+	}
+}
+}
+#define SWELLDEM_ATTR_MEMBER(type, name, def, flags, doc) type name = def;
+#define SWELLDEM_ATTR_SERIALIZE(type, name, def, flags, doc)                                                                                                   \
+	if (!((flags)&swelldem_attr::Transient)) ar& boost::serialization::make_nvp(#name, name);
+#define SWELLDEM_ATTR_SET(type, name, def, flags, doc)                                                                                                         \
 	if (key == #name) {                                                                                                                                    \
+		if ((flags) & (swelldem_attr::Result | swelldem_attr::Internal))                                                                               \
+			throw std::invalid_argument(getClassName() + "." #name " is a result, not a setting: it cannot be set");                            \
 		name = boost::python::extract<type>(value);                                                                                                    \
 		return;                                                                                                                                        \
 	}
-#define SWELLDEM_ATTR_GET(type, name, def, doc) ret[#name] = boost::python::object(name);
-#define SWELLDEM_ATTR_PROPERTY(type, name, def, doc)                                                                                                           \
-	cls.add_property(#name,                                                                                                                                \
-	                 boost::python::make_getter(&ThisClass::name, boost::python::return_value_policy<boost::python::return_by_value>()),                   \
-	                 boost::python::make_setter(&ThisClass::name, boost::python::return_value_policy<boost::python::return_by_value>()),                   \
-	                 doc);
+#define SWELLDEM_ATTR_GET(type, name, def, flags, doc)                                                                                                         \
+	if (!((flags)&swelldem_attr::Internal)) ret[#name] = boost::python::object(name);
+#define SWELLDEM_ATTR_PROPERTY(type, name, def, flags, doc)                                                                                                    \
+	if (!((flags)&swelldem_attr::Internal)) {                                                                                                              \
+		auto getter = boost::python::make_getter(&ThisClass::name, boost::python::return_value_policy<boost::python::return_by_value>());             \
+		if ((flags)&swelldem_attr::Result) cls.add_property(#name, getter, "(result, read-only) " doc);                                                \
+		else                                                                                                                                           \
+			cls.add_property(#name, getter, +[](ThisClass& self, const type& v) { swelldem_py::setChecked(self, self.name, v); }, doc);          \
+	}
+// A table of parameters stored in a plain struct member `table` (the physics core's own struct):
+// #define TABLE(X) X(type, name, member path in the struct, default, "doc [unit]"); all are settings.
+#define SWELLDEM_NO_TABLE(X)
+#define SWELLDEM_TABLE_SERIALIZE(type, name, member, def, doc) ar& boost::serialization::make_nvp(#name, table.member);
+#define SWELLDEM_TABLE_SET(type, name, member, def, doc)                                                                                                       \
+	if (key == #name) {                                                                                                                                    \
+		table.member = boost::python::extract<type>(value);                                                                                            \
+		return;                                                                                                                                        \
+	}
+#define SWELLDEM_TABLE_GET(type, name, member, def, doc) ret[#name] = boost::python::object(table.member);
+#define SWELLDEM_TABLE_PROPERTY(type, name, member, def, doc)                                                                                                  \
+	cls.add_property(                                                                                                                                      \
+	        #name, +[](const ThisClass& self) -> type { return self.table.member; },                                                                      \
+	        +[](ThisClass& self, const type& v) { swelldem_py::setChecked(self, self.table.member, v); }, doc);
 
 // Everything a swelldem class needs to be a YADE Serializable. The class must also define
 // `void postLoad()` (called after attributes are set from Python or loaded from a file; the
 // place to validate them) and `template <class C> static void pyMethods(C&)` (extra Python methods).
-#define SWELLDEM_CLASS(Class, Base, docString, ATTRS)                                                                                                          \
+#define SWELLDEM_CLASS(Class, Base, docString, ATTRS) SWELLDEM_CLASS_WITH_TABLE(Class, Base, docString, ATTRS, SWELLDEM_NO_TABLE)
+#define SWELLDEM_CLASS_WITH_TABLE(Class, Base, docString, ATTRS, TABLE)                                                                                        \
 public:                                                                                                                                                        \
 	using ThisClass = Class;                                                                                                                               \
 	ATTRS(SWELLDEM_ATTR_MEMBER)                                                                                                                            \
@@ -96,12 +143,14 @@ public:                                                                         
 	void   pySetAttr(const std::string& key, const boost::python::object& value) override                                                                  \
 	{                                                                                                                                                      \
 		ATTRS(SWELLDEM_ATTR_SET)                                                                                                                       \
+		TABLE(SWELLDEM_TABLE_SET)                                                                                                                      \
 		Base::pySetAttr(key, value);                                                                                                                   \
 	}                                                                                                                                                      \
 	boost::python::dict pyDict() const override                                                                                                            \
 	{                                                                                                                                                      \
 		boost::python::dict ret;                                                                                                                       \
 		ATTRS(SWELLDEM_ATTR_GET)                                                                                                                       \
+		TABLE(SWELLDEM_TABLE_GET)                                                                                                                      \
 		ret.update(this->pyDictCustom());                                                                                                              \
 		ret.update(Base::pyDict());                                                                                                                    \
 		return ret;                                                                                                                                    \
@@ -121,6 +170,7 @@ public:                                                                         
 		boost::python::class_<Class, shared_ptr<Class>, boost::python::bases<Base>, boost::noncopyable> cls(#Class, docString);                     \
 		cls.def("__init__", swelldem_py::rawConstructor(swelldem_py::constructWithAttrs<Class>));                                                       \
 		ATTRS(SWELLDEM_ATTR_PROPERTY)                                                                                                                  \
+		TABLE(SWELLDEM_TABLE_PROPERTY)                                                                                                                 \
 		pyMethods(cls);                                                                                                                                \
 	}                                                                                                                                                      \
 	friend class boost::serialization::access;                                                                                                             \
@@ -128,7 +178,11 @@ public:                                                                         
 	{                                                                                                                                                      \
 		ar& boost::serialization::make_nvp(#Base, boost::serialization::base_object<Base>(*this));                                                     \
 		ATTRS(SWELLDEM_ATTR_SERIALIZE)                                                                                                                 \
-		if (Archive::is_loading::value) postLoad(); /* as YADE's classes: validate and rebuild transient state on load */                           \
+		TABLE(SWELLDEM_TABLE_SERIALIZE)                                                                                                                \
+		if (Archive::is_loading::value) { /* as YADE's classes: validate and rebuild transient state on load */                                      \
+			postLoad();                                                                                                                            \
+			swelldem_py::afterLoad(*this);                                                                                                         \
+		}                                                                                                                                              \
 	}
 
 // A class YADE dispatches on (an IPhys, a Material) needs its own index in its family.

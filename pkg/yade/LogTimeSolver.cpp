@@ -1,0 +1,369 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "LogTimeSolver.hpp"
+#include "core/LogTimes.hpp"
+#include "core/Validate.hpp"
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <set>
+#include <sstream>
+
+namespace yade {
+namespace core = swelldem::core;
+
+namespace {
+	string num(double v)
+	{
+		std::ostringstream o;
+		o.precision(4);
+		o << v;
+		return o.str();
+	}
+}
+
+bool logTimeSolverPending(const Scene* scene)
+{
+	for (const auto& e : scene->engines)
+		if (const auto* s = dynamic_cast<const LogTimeSolver*>(e.get()))
+			if (s->times.empty()) return true;
+	return false;
+}
+
+void LogTimeSolver::postLoad()
+{
+	// The schedule's checks are the core's (one range each); the list itself is made at the start.
+	core::logTimes(tStart, tEnd, stepsPerDecade, std::vector<double>(extraTimes.begin(), extraTimes.end()));
+	core::requireOpenInterval(getClassName() + ".tolerance", tolerance, 0, 1);
+	core::require(minIterations >= 1, getClassName() + ".minIterations", minIterations, ">= 1");
+	core::require(maxIterations >= minIterations, getClassName() + ".maxIterations", maxIterations, ">= minIterations");
+	core::requirePositive(getClassName() + ".divergenceRatio", divergenceRatio);
+	core::require(colliderPeriod >= 1, getClassName() + ".colliderPeriod", colliderPeriod, ">= 1");
+	core::requireOpenInterval(getClassName() + ".relativeForceFloor", relativeForceFloor, 0, 1);
+}
+
+void LogTimeSolver::afterLoad()
+{
+	sessionStart = std::chrono::steady_clock::now();
+	wallBefore   = stepWall.empty() ? 0.0 : stepWall.back();
+	rebeginStep  = true;
+}
+
+double LogTimeSolver::wallNow() const
+{
+	return wallBefore + std::chrono::duration<double>(std::chrono::steady_clock::now() - sessionStart).count();
+}
+
+void LogTimeSolver::fail(const string& why) const
+{
+	std::ostringstream o;
+	o << "swelldem: " << getClassName() << " stopped at physical step " << step << "/" << nSteps() << " (t = "
+	  << num(step > 0 && size_t(step) < times.size() ? times[step] : tStart) << " d), iteration " << iterInStep << " of the step (O.iter "
+	  << scene->iter << "): " << why << ". The scene is left as it is; results written so far are kept.";
+	throw std::runtime_error(o.str());
+}
+
+void LogTimeSolver::zeroVelocities(Scene* scene)
+{
+	for (const auto& b : scene->bodies->body)
+		if (b) b->state->vel = Vector3r::Zero(), b->state->angVel = Vector3r::Zero();
+}
+
+void LogTimeSolver::refreshKinds()
+{
+	std::set<ContactKind*> found;
+	const auto&            L = scene->interactions->linIntrs;
+	for (size_t i = 0; i < scene->interactions->currSize; ++i)
+		if (L[i]->isReal())
+			if (auto* p = dynamic_cast<SwellPhys*>(L[i]->phys.get())) found.insert(p->kind.get());
+	kinds.assign(found.begin(), found.end());
+	for (ContactKind* k : kinds)
+		k->breaksAtEquilibrium = true;
+}
+
+long LogTimeSolver::breakEvents() const
+{
+	long n = 0;
+	for (ContactKind* k : kinds)
+		n += k->breakEvents;
+	return n;
+}
+
+long LogTimeSolver::breakOverloaded()
+{
+	// Breaking in the transients of the iterations would break contacts that the equilibrium never
+	// loads beyond their strength (measured with the ADR: twice the breaks of a slow quasi-static
+	// loading). Checked here, at equilibrium, every overloaded contact breaks at once and the step
+	// iterates again; what remains of the step size's effect is the load increment.
+	long        n = 0;
+	const auto& L = scene->interactions->linIntrs;
+	for (size_t i = 0; i < scene->interactions->currSize; ++i) {
+		if (!L[i]->isReal()) continue;
+		if (auto* p = dynamic_cast<SwellPhys*>(L[i]->phys.get()))
+			if (Law2_ScGeom_SwellPhys_AgingSwelling::breakIfOverloaded(*p)) ++n;
+	}
+	return n;
+}
+
+void LogTimeSolver::controlCollider()
+{
+	// Bonded contacts exist from the start; the collider only has to find contacts made later,
+	// which a quasi-static run may find a few iterations late: run it once every colliderPeriod
+	// iterations and at the start of each physical step.
+	if (colliderPeriod <= 1) return;
+	for (const auto& e : scene->engines)
+		if (e && e->label == colliderLabel) e->dead = !(iterInStep == 0 || totalIterations % colliderPeriod == 0);
+}
+
+void LogTimeSolver::initialize()
+{
+	postLoad();
+	for (const auto& b : scene->bodies->body)
+		if (b && (b->state->blockedDOFs & kNeed2D) != kNeed2D)
+			throw std::invalid_argument("swelldem: " + getClassName() + " is a 2D solver: body " + std::to_string(b->id)
+			                            + " must have z translation and x, y rotations blocked (State.blockedDOFs containing 'zXY'); "
+			                              "3D sphere packings are not supported");
+	times = core::logTimes(tStart, tEnd, stepsPerDecade, std::vector<double>(extraTimes.begin(), extraTimes.end()));
+	zeroVelocities(scene);
+	scene->dt    = 1.0;
+	step         = 1;
+	physTime     = tStart;
+	nRealSeen    = -1;
+	sessionStart = std::chrono::steady_clock::now();
+	wallBefore   = 0;
+	refreshKinds();
+	brokenSeen = breakEvents();
+	if (verbose) {
+		std::printf("swelldem: %s, %d physical steps from %s to %s days (%s a decade), tolerance %s\n", getClassName().c_str(), nSteps(),
+		            num(tStart).c_str(), num(tEnd).c_str(), num(stepsPerDecade).c_str(), num(tolerance).c_str());
+		std::fflush(stdout);
+	}
+	beginPhysicalStep();
+	rebeginStep = false;
+}
+
+void LogTimeSolver::beginKindsStep()
+{
+	// Each kind's law is built for the whole analysis: its Kelvin chain spans the first step to the run's span.
+	const double shortest = times[1] - times[0], span = tEnd - tStart;
+	for (ContactKind* k : kinds)
+		k->beginStep(shortest, span, times[step - 1], times[step]);
+}
+
+void LogTimeSolver::beginPhysicalStep()
+{
+	refreshKinds();
+	beginKindsStep();
+	for (ContactKind* k : kinds)
+		++k->stepSerial;
+	iterInStep = 0;
+	zeroVelocities(scene);
+}
+
+bool LogTimeSolver::startIteration()
+{
+	if (times.empty()) {
+		initialize();
+		return false; // contacts set themselves up for step 1 at the next iteration
+	}
+	if (finished) return false;
+	const string err = takeFunctorError();
+	if (!err.empty()) fail(err);
+	if (rebeginStep) {
+		refreshKinds();
+		beginKindsStep();
+		rebeginStep = false;
+	}
+	scene->forces.sync();
+	++iterInStep;
+	++totalIterations;
+	return true;
+}
+
+void LogTimeSolver::measureExternalScale(long nFree)
+{
+	// Loads not made by contacts (ForceEngine, O.forces.setPermF, ...) are the resultant force on a
+	// body less its contacts' forces; measured once a step (they are constant within it).
+	const auto&           bodies = scene->bodies->body;
+	std::vector<Vector3r> contact(bodies.size(), Vector3r::Zero());
+	const auto&           L = scene->interactions->linIntrs;
+	for (size_t i = 0; i < scene->interactions->currSize; ++i) {
+		const Interaction* I = L[i].get();
+		if (!I->isReal()) continue;
+		const auto*    p = static_cast<const NormShearPhys*>(I->phys.get());
+		const Vector3r f = -p->normalForce - p->shearForce;
+		contact[I->id1] += f;
+		contact[I->id2] -= f;
+	}
+	Real sum = 0;
+	for (const auto& b : bodies) {
+		if (!b || b->isClump()) continue;
+		const State* s = b->state.get();
+		if ((s->blockedDOFs & (State::DOF_X | State::DOF_Y)) == (State::DOF_X | State::DOF_Y)) continue;
+		const Vector3r e = scene->forces.getForce(b->id) - contact[b->id];
+		sum += std::sqrt(((s->blockedDOFs & State::DOF_X) ? 0 : e[0] * e[0]) + ((s->blockedDOFs & State::DOF_Y) ? 0 : e[1] * e[1]));
+	}
+	externalScale = nFree > 0 ? sum / nFree : 0;
+}
+
+LogTimeSolver::Balance LogTimeSolver::measureBalance()
+{
+	// Unbalanced-force ratio, as YADE's unbalancedForce(): mean resultant on free bodies / mean contact force.
+	const auto& bodies  = scene->bodies->body;
+	const long  nBodies = long(bodies.size());
+	Real        sumRes = 0, sumContact = 0, sumKn = 0, posScale = 0;
+	long        nFree = 0, nReal = 0, badBody = -1;
+#pragma omp parallel for schedule(static) reduction(+ : sumRes, nFree) reduction(max : posScale) if (nBodies > kParallelBodies)
+	for (long k = 0; k < nBodies; ++k) {
+		const Body* b = bodies[k].get();
+		if (!b || b->isClump()) continue;
+		const State* s = b->state.get();
+		if ((s->blockedDOFs & (State::DOF_X | State::DOF_Y)) == (State::DOF_X | State::DOF_Y)) continue;
+		const Vector3r& f = scene->forces.getForce(b->id);
+		if (!std::isfinite(f[0]) || !std::isfinite(f[1])) {
+#pragma omp critical(swelldemBadBody)
+			if (badBody < 0 || b->id < badBody) badBody = b->id;
+			continue;
+		}
+		Real fx = (s->blockedDOFs & State::DOF_X) ? 0 : f[0], fy = (s->blockedDOFs & State::DOF_Y) ? 0 : f[1];
+		sumRes += std::sqrt(fx * fx + fy * fy);
+		posScale = std::max(posScale, s->se3.position.head<2>().cwiseAbs().maxCoeff());
+		++nFree;
+	}
+	if (badBody >= 0) {
+		const Vector3r& f = scene->forces.getForce(int(badBody));
+		fail("non-finite force on body " + std::to_string(badBody) + " (" + num(f[0]) + ", " + num(f[1]) + ") N");
+	}
+	const auto& L     = scene->interactions->linIntrs;
+	const long  nIntr = long(scene->interactions->currSize);
+#pragma omp parallel for schedule(static) reduction(+ : nReal, sumContact, sumKn) if (nIntr > 2 * kParallelBodies)
+	for (long i = 0; i < nIntr; ++i) {
+		const Interaction* I = L[i].get();
+		if (!I->isReal()) continue;
+		++nReal;
+		const auto* p = static_cast<const NormShearPhys*>(I->phys.get());
+		Real        F = (p->normalForce + p->shearForce).norm();
+		sumKn += std::abs(p->kn);
+		// A contact that the step loads through its own offset (swelling, creep) counts at least
+		// with that load: free swelling ends with zero contact forces, not with a zero ratio.
+		if (const auto* sp = dynamic_cast<const SwellPhys*>(p))
+			F = std::max(F, std::abs(sp->state.kn * sp->state.duOffsetN) + std::abs(sp->state.ks * sp->state.duOffsetS));
+		sumContact += F;
+	}
+	if (!std::isfinite(sumContact)) fail("a contact force is not finite");
+	if (iterInStep == 1) measureExternalScale(nFree);
+	// Steps that load the contacts by almost nothing (late swelling) are judged against a floor,
+	// a fraction of the largest mean contact force of the run, not against round-off.
+	Real meanContact = nReal > 0 ? sumContact / nReal : 0;
+	forceScaleMax    = std::max(forceScaleMax, meanContact);
+	meanContact      = std::max({ meanContact, relativeForceFloor * forceScaleMax, externalScale });
+	Balance b;
+	b.nReal = nReal;
+	b.ratio = (nFree == 0 || meanContact == 0) ? (sumRes == 0 ? 0.0 : std::numeric_limits<Real>::infinity()) : (sumRes / nFree) / meanContact;
+	// Below this residual positions cannot resolve a better equilibrium (their round-off times the
+	// stiffness): a step loaded by next to nothing converges there instead of never.
+	b.atRoundOff = nReal > 0 && nFree > 0 && sumRes / nFree <= 256 * std::numeric_limits<Real>::epsilon() * posScale * sumKn / nReal;
+	unbalanced   = b.ratio;
+	if (nReal != nRealSeen) {
+		refreshKinds();
+		nRealSeen = nReal;
+	}
+	return b;
+}
+
+LogTimeSolver::StepOutcome LogTimeSolver::settleStep(const Balance& b, bool converged)
+{
+	const long breaks    = breakEvents();
+	const bool newBreaks = breaks != brokenSeen;
+	brokenSeen           = breaks;
+	StepOutcome out      = StepOutcome::Continue;
+	if (iterInStep >= minIterations && !newBreaks && converged) {
+		if (breakOverloaded() == 0) {
+			stepRoundOff.push_back(b.ratio > tolerance ? 1.0 : 0.0);
+			commitPhysicalStep();
+			out = StepOutcome::Committed;
+		} else
+			out = StepOutcome::Broke;
+	}
+	controlCollider();
+	if (out == StepOutcome::Committed) return out;
+	if (std::isnan(b.ratio) || b.ratio > divergenceRatio)
+		fail("diverged: unbalanced-force ratio " + num(b.ratio) + " > divergenceRatio " + num(divergenceRatio));
+	if (iterInStep >= maxIterations)
+		fail("no equilibrium after maxIterations = " + std::to_string(maxIterations) + " iterations (unbalanced-force ratio " + num(b.ratio)
+		     + ", tolerance " + num(tolerance) + ")");
+	return out;
+}
+
+void LogTimeSolver::progressLine() const
+{
+	const double el = wallNow(), left = el / step * (nSteps() - step);
+	std::printf("swelldem: step %d/%d  t = %s d  iterations %ld (total %ld)  unbalanced %.2e  elapsed %.1f s  left ~%.1f s\n", step, nSteps(),
+	            num(physTime).c_str(), iterInStep, totalIterations, unbalanced, el, left);
+	std::fflush(stdout);
+}
+
+void LogTimeSolver::commitPhysicalStep()
+{
+	const auto& L = scene->interactions->linIntrs;
+	for (size_t i = 0; i < scene->interactions->currSize; ++i)
+		if (L[i]->isReal())
+			if (auto* p = dynamic_cast<SwellPhys*>(L[i]->phys.get())) Law2_ScGeom_SwellPhys_AgingSwelling::commit(*p);
+	physTime = times[step];
+	stepIterations.push_back(iterInStep);
+	stepUnbalanced.push_back(unbalanced);
+	stepWall.push_back(wallNow());
+	if (verbose) progressLine();
+	if (step == nSteps()) {
+		finished = true;
+		zeroVelocities(scene);
+		scene->stopAtIter = scene->iter + 1;
+	} else {
+		++step;
+		beginPhysicalStep();
+	}
+	runStepHook();
+}
+
+void LogTimeSolver::runStepHook()
+{
+	if (!stepHook_) return;
+	PyGILState_STATE gil = PyGILState_Ensure();
+	bool             ok  = true;
+	try {
+		(*stepHook_)();
+	} catch (const boost::python::error_already_set&) {
+		PyErr_Print();
+		ok = false;
+	}
+	PyGILState_Release(gil);
+	if (!ok) fail("the stepHook raised a Python exception (printed above)");
+}
+
+LogTimeSolver::~LogTimeSolver()
+{
+	if (!stepHook_) return;
+	if (Py_IsInitialized()) {
+		PyGILState_STATE gil = PyGILState_Ensure();
+		stepHook_.reset();
+		PyGILState_Release(gil);
+	} else
+		stepHook_.release(); // the interpreter is gone, and its objects with it
+}
+
+boost::python::object LogTimeSolver::getStepHook() const { return stepHook_ ? *stepHook_ : boost::python::object(); }
+
+void LogTimeSolver::setStepHook(const boost::python::object& hook)
+{
+	if (hook.is_none()) {
+		stepHook_.reset();
+		return;
+	}
+	if (!PyCallable_Check(hook.ptr()))
+		throw std::invalid_argument(getClassName() + ".stepHook = " + string(boost::python::extract<string>(boost::python::str(hook)))
+		                            + " is out of range; allowed: a callable taking no arguments, or None");
+	stepHook_ = std::make_unique<boost::python::object>(hook);
+}
+
+void LogTimeSolver::action() { fail("LogTimeSolver is the base of the log-time solvers; use AdrLogTimeIntegrator or ImplicitLogTimeSolver"); }
+
+} // namespace yade

@@ -1,0 +1,111 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// What swelldem's quasi-static solvers share, whatever their equilibrium method: physical (creep)
+// times evenly spaced in log time, the contacts' step set-up (each kind begins the step; each
+// contact sets itself up at its first iteration of it) and commit, breaks at equilibrium, the
+// unbalanced-force ratio that decides equilibrium, the per-step hook, progress lines and O.save /
+// O.load. One YADE iteration is one equilibrium iteration; O.dt is a pseudo time step (1).
+// AdrLogTimeIntegrator (adaptive dynamic relaxation, the paper's method) and ImplicitLogTimeSolver
+// (Newton iterations with a sparse Cholesky factor) derive from it and implement action() with
+// the helpers below. 2D only: discs in the plane z = 0 with z translation and x, y rotations blocked.
+#pragma once
+#include "Law2_ScGeom_SwellPhys_AgingSwelling.hpp"
+#include <chrono>
+
+namespace yade {
+
+class LogTimeSolver : public GlobalEngine {
+public:
+#define SWELLDEM_LOG_TIME_ATTRS(X)                                                                                                                             \
+	X(Real, tStart, 1.0, swelldem_attr::Setting, "Physical time (age) of the initial, stress-free state [day]")                                          \
+	X(Real, tEnd, 3650.0, swelldem_attr::Setting, "Last physical time [day]")                                                                            \
+	X(Real, stepsPerDecade, 10, swelldem_attr::Setting, "Physical steps per decade of log time (0 < N <= 10000) [1/decade]")                          \
+	X(std::vector<Real>, extraTimes, std::vector<Real>(), swelldem_attr::Setting, "Additional physical times to stop at (e.g. output times) [day]")   \
+	X(Real, tolerance, 1e-4, swelldem_attr::Setting,                                                                                                     \
+	  "Equilibrium when the unbalanced-force ratio is below: mean resultant force on free bodies / mean contact force, a contact "                    \
+	  "counting at least with the load its step offset imposes, kn'' |du''| + ks'' |du_s''|, and external loads counting too [-]")                   \
+	X(long, minIterations, 2, swelldem_attr::Setting, "Iterations per physical step at least [-]")                                                     \
+	X(long, maxIterations, 200000, swelldem_attr::Setting, "Iterations per physical step at most; beyond, the run stops with a message [-]")           \
+	X(Real, divergenceRatio, 1e6, swelldem_attr::Setting, "An unbalanced-force ratio above this (or NaN) stops the run as diverged [-]")               \
+	X(Real, relativeForceFloor, 1e-3, swelldem_attr::Setting,                                                                                            \
+	  "The mean contact force of the ratio is at least this fraction of its largest value in the run [-]")                                           \
+	X(long, colliderPeriod, 20, swelldem_attr::Setting,                                                                                                  \
+	  "Run the engine labelled colliderLabel only every this many iterations and at each step's start (1: always) [-]")                              \
+	X(string, colliderLabel, "collider", swelldem_attr::Setting, "Label of the collider engine that colliderPeriod controls [-]")                      \
+	X(bool, verbose, true, swelldem_attr::Setting, "Print a progress line per physical step [-]")                                                      \
+	X(std::vector<Real>, times, std::vector<Real>(), swelldem_attr::Result, "Physical times of the run, tStart first (set at the first iteration) [day]") \
+	X(int, step, 0, swelldem_attr::Result, "Current physical step (1..nSteps; step i goes from times[i-1] to times[i]) [-]")                           \
+	X(Real, physTime, 0.0, swelldem_attr::Result, "Physical time reached by the last converged step [day]")                                            \
+	X(long, iterInStep, 0, swelldem_attr::Result, "Iterations in the current physical step [-]")                                                       \
+	X(long, totalIterations, 0, swelldem_attr::Result, "Iterations since the start [-]")                                                               \
+	X(Real, unbalanced, 0.0, swelldem_attr::Result, "Unbalanced-force ratio of the last iteration [-]")                                                \
+	X(bool, finished, false, swelldem_attr::Result, "True once the last physical step has converged [-]")                                             \
+	X(std::vector<Real>, stepIterations, std::vector<Real>(), swelldem_attr::Result, "Iterations of each converged step [-]")                         \
+	X(std::vector<Real>, stepUnbalanced, std::vector<Real>(), swelldem_attr::Result, "Unbalanced-force ratio at the end of each converged step [-]")  \
+	X(std::vector<Real>, stepRoundOff, std::vector<Real>(), swelldem_attr::Result,                                                                      \
+	  "1 where a step ended at the round-off limit of the positions above the tolerance, else 0 [-]")                                                \
+	X(std::vector<Real>, stepWall, std::vector<Real>(), swelldem_attr::Result, "Wall time at the end of each converged step since the start [s]")    \
+	X(long, brokenSeen, 0, swelldem_attr::Result, "Break events seen so far (sum over kinds) [-]")                                                     \
+	X(Real, forceScaleMax, 0.0, swelldem_attr::Internal, "Largest mean contact force of the run so far [N]")                                          \
+	X(Real, externalScale, 0.0, swelldem_attr::Internal, "Mean external load on the free bodies, measured at the step's first iteration [N]")        \
+	X(long, nRealSeen, -1, swelldem_attr::Internal, "Real contacts at the last iteration [-]")                                                        \
+	X(Real, wallBefore, 0.0, swelldem_attr::Internal, "Wall time of the run before this session (O.load) [s]")
+	SWELLDEM_CLASS(LogTimeSolver, GlobalEngine,
+	               "Base of swelldem's quasi-static log-time solvers (AdrLogTimeIntegrator, ImplicitLogTimeSolver); not usable "
+	               "alone.",
+	               SWELLDEM_LOG_TIME_ATTRS)
+	virtual ~LogTimeSolver();
+	void action() override;
+	void postLoad();
+	void afterLoad();
+	template <class C> static void pyMethods(C& cls)
+	{
+		cls.add_property("nSteps", &LogTimeSolver::nSteps, "Number of physical steps [-]");
+		cls.add_property("stepHook", &LogTimeSolver::getStepHook, &LogTimeSolver::setStepHook,
+		                 "Python callable run without arguments after every converged physical step, or None. Not saved "
+		                 "with the scene: set it again after O.load [-]");
+	}
+	int                   nSteps() const { return times.empty() ? 0 : int(times.size()) - 1; }
+	boost::python::object getStepHook() const;
+	void                  setStepHook(const boost::python::object& hook);
+
+protected:
+	/// Equilibrium measure of the current iteration (after the InteractionLoop).
+	struct Balance {
+		Real ratio      = 0;     // unbalanced-force ratio
+		bool atRoundOff = false; // below what the positions' round-off can resolve
+		long nReal      = 0;     // real contacts
+	};
+	enum class StepOutcome { Continue, Broke, Committed };
+
+	/// Start of every action(): set-up at the first call, re-begins the step after O.load, raises
+	/// errors recorded by the functors; false when the call has nothing more to do.
+	bool startIteration();
+	Balance measureBalance();
+	/// Commits the step when it is in equilibrium (converged) with no overloaded contact; breaks
+	/// the overloaded ones otherwise (Broke); stops the run when it diverged or ran out of iterations.
+	StepOutcome settleStep(const Balance& b, bool converged);
+	[[noreturn]] void fail(const string& why) const;
+	static void       zeroVelocities(Scene* scene);
+	static const unsigned kNeed2D = State::DOF_Z | State::DOF_RX | State::DOF_RY;
+	static const long     kParallelBodies = 4000; // below this many discs a loop is cheaper than waking OpenMP's threads
+	std::vector<ContactKind*> kinds;              // the kinds of the scene's contacts, refreshed when contacts come or go
+
+private:
+	void   initialize();
+	void   beginKindsStep();
+	void   beginPhysicalStep();
+	void   commitPhysicalStep();
+	void   refreshKinds();
+	long   breakEvents() const;
+	long   breakOverloaded();
+	void   controlCollider();
+	void   measureExternalScale(long nFree);
+	void   runStepHook();
+	void   progressLine() const;
+	double wallNow() const;
+	std::chrono::steady_clock::time_point  sessionStart = std::chrono::steady_clock::now();
+	bool                                   rebeginStep  = true; // the kinds' laws are not saved: begin the current step again after O.load
+	std::unique_ptr<boost::python::object> stepHook_;           // null: no hook (holds a Python reference: released under the GIL)
+};
+
+} // namespace yade
