@@ -129,6 +129,10 @@ void AdrLogTimeIntegrator::action()
 		if (starting && !times.empty()) start();
 		return;
 	}
+	struct Track {
+		AdrLogTimeIntegrator* self;
+		~Track() { self->trackHeldBodies(); }
+	} track { this };
 	const Balance b = measureBalance();
 	// A break leaves kn, ks (and so the Gershgorin bound) as they are: only new or lost contacts
 	// and a new step's stiffness call for new masses.

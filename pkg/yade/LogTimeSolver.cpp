@@ -62,6 +62,26 @@ void LogTimeSolver::fail(const string& why) const
 	throw std::runtime_error(o.str());
 }
 
+void LogTimeSolver::trackHeldBodies()
+{
+	const auto& bodies = scene->bodies->body;
+	if (heldPos.size() != 2 * bodies.size()) {
+		heldPos.assign(2 * bodies.size(), 0.0);
+		for (const auto& b : bodies)
+			if (b) heldPos[2 * b->id] = b->state->se3.position[0], heldPos[2 * b->id + 1] = b->state->se3.position[1];
+		return;
+	}
+	for (const auto& b : bodies) {
+		if (!b) continue;
+		State* s = b->state.get();
+		for (int d = 0; d < 2; ++d) {
+			Real& was = heldPos[2 * b->id + d];
+			if (s->blockedDOFs & (d == 0 ? State::DOF_X : State::DOF_Y)) s->vel[d] = (s->se3.position[d] - was) / scene->dt;
+			was = s->se3.position[d];
+		}
+	}
+}
+
 void LogTimeSolver::zeroVelocities(Scene* scene)
 {
 	for (const auto& b : scene->bodies->body)
@@ -132,6 +152,8 @@ void LogTimeSolver::initialize()
 	wallBefore   = 0;
 	refreshKinds();
 	brokenSeen = breakEvents();
+	heldPos.clear();
+	trackHeldBodies();
 	if (verbose) {
 		std::printf("swelldem: %s, %d physical steps from %s to %s days (%s a decade), tolerance %s\n", getClassName().c_str(), nSteps(),
 		            num(tStart).c_str(), num(tEnd).c_str(), num(stepsPerDecade).c_str(), num(tolerance).c_str());
@@ -297,8 +319,8 @@ LogTimeSolver::StepOutcome LogTimeSolver::settleStep(const Balance& b, bool conv
 void LogTimeSolver::progressLine() const
 {
 	const double el = wallNow(), left = el / step * (nSteps() - step);
-	std::printf("swelldem: step %d/%d  t = %s d  iterations %ld (total %ld)  unbalanced %.2e  elapsed %.1f s  left ~%.1f s\n", step, nSteps(),
-	            num(physTime).c_str(), iterInStep, totalIterations, unbalanced, el, left);
+	std::printf("swelldem: step %d/%d  t = %s d  %s iterations %ld (total %ld)  unbalanced %.2e  elapsed %.1f s  left ~%.1f s\n", step, nSteps(),
+	            num(physTime).c_str(), iterationName, iterInStep, totalIterations, unbalanced, el, left);
 	std::fflush(stdout);
 }
 

@@ -6,7 +6,8 @@
 // O.load. One YADE iteration is one equilibrium iteration; O.dt is a pseudo time step (1).
 // AdrLogTimeIntegrator (adaptive dynamic relaxation, the paper's method) and ImplicitLogTimeSolver
 // (Newton iterations with a sparse Cholesky factor) derive from it and implement action() with
-// the helpers below. 2D only: discs in the plane z = 0 with z translation and x, y rotations blocked.
+// the helpers below. Imposed displacements: move a held body (blockedDOFs x or y) by setting its
+// position, e.g. in the stepHook; constant loads: YADE's ForceEngine or O.forces.setPermF. 2D only: discs in the plane z = 0 with z translation and x, y rotations blocked.
 #pragma once
 #include "Law2_ScGeom_SwellPhys_AgingSwelling.hpp"
 #include <chrono>
@@ -48,6 +49,7 @@ public:
 	X(Real, forceScaleMax, 0.0, swelldem_attr::Internal, "Largest mean contact force of the run so far [N]")                                          \
 	X(Real, externalScale, 0.0, swelldem_attr::Internal, "Mean external load on the free bodies, measured at the step's first iteration [N]")        \
 	X(long, nRealSeen, -1, swelldem_attr::Internal, "Real contacts at the last iteration [-]")                                                        \
+	X(std::vector<Real>, heldPos, std::vector<Real>(), swelldem_attr::Internal, "Positions (x, y) of the bodies at the end of the last action [m]")  \
 	X(Real, wallBefore, 0.0, swelldem_attr::Internal, "Wall time of the run before this session (O.load) [s]")
 	SWELLDEM_CLASS(LogTimeSolver, GlobalEngine,
 	               "Base of swelldem's quasi-static log-time solvers (AdrLogTimeIntegrator, ImplicitLogTimeSolver); not usable "
@@ -84,11 +86,16 @@ protected:
 	/// Commits the step when it is in equilibrium (converged) with no overloaded contact; breaks
 	/// the overloaded ones otherwise (Broke); stops the run when it diverged or ran out of iterations.
 	StepOutcome settleStep(const Balance& b, bool converged);
+	/// End of every action(): a body held in x or y that was moved since the last action (by the
+	/// stepHook or between O.run calls) gets the velocity of that move for one pass, so that YADE's
+	/// contact geometry, which integrates the shear from velocities, sees it as a displacement.
+	void trackHeldBodies();
 	[[noreturn]] void fail(const string& why) const;
 	static void       zeroVelocities(Scene* scene);
 	static const unsigned kNeed2D = State::DOF_Z | State::DOF_RX | State::DOF_RY;
 	static const long     kParallelBodies = 4000; // below this many discs a loop is cheaper than waking OpenMP's threads
 	std::vector<ContactKind*> kinds;              // the kinds of the scene's contacts, refreshed when contacts come or go
+	const char*               iterationName = "ADR"; // what one iteration is, for the progress lines
 
 private:
 	void   initialize();

@@ -2,6 +2,7 @@
 // The one list of swelldem's YADE classes: each is registered with YADE's ClassFactory, exported
 // to boost::serialization, and announced to YADE, which then exposes it in Python at start-up.
 #include "AdrLogTimeIntegrator.hpp"
+#include "ImplicitLogTimeSolver.hpp"
 #include "ConcreteMat.hpp"
 #include "ContactKind.hpp"
 #include "Ip2_ConcreteMat_ConcreteMat_SwellPhys.hpp"
@@ -17,6 +18,7 @@
 	X(Law2_ScGeom_SwellPhys_AgingSwelling)                                                                                                                 \
 	X(LogTimeSolver)                                                                                                                                       \
 	X(AdrLogTimeIntegrator)                                                                                                                                \
+	X(ImplicitLogTimeSolver)                                                                                                                               \
 	X(SwelldemAbiProbe)
 
 namespace yade {

@@ -75,8 +75,9 @@ public:
 		cls.add_property("committedBroken", +[](const SwellPhys& p) { return p.state.committed.broken; }, "(result) Broken at the end of the last converged step [-]");
 		cls.add_property("gamma", +[](const SwellPhys& p) { return std::vector<Real>(p.state.gamma.begin(), p.state.gamma.end()); },
 		                 "(result) Hidden Kelvin-chain strains, normal units then shear units (empty unless viscoelastic) [-]");
-		cls.add_property("uRef", +[](const SwellPhys& p) { return p.state.openingRef; },
-		                 "(result) Normal opening (-penetrationDepth) at the end of the last converged step; at creation the stress-free one [m]");
+		cls.add_property("uRef", +[](const SwellPhys& p) { return p.state.openingRef; }, +[](SwellPhys& p, Real v) { p.state.openingRef = v; },
+		                 "Normal opening (-penetrationDepth) at which the committed force was reached: the stress-free opening at "
+		                 "creation (set it before the first step to choose another), then the converged opening of each step [m]");
 		cls.add_property("duOffsetN", +[](const SwellPhys& p) { return p.state.duOffsetN; }, +[](SwellPhys& p, Real v) { p.state.duOffsetN = v; },
 		                 "Step data: inelastic + swelling normal displacement increment of the current step (opening > 0); set by the step "
 		                 "set-up, writable for experiments [m]");

@@ -1,0 +1,283 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "ImplicitLogTimeSolver.hpp"
+#include "core/Validate.hpp"
+#include <Eigen/CholmodSupport>
+#include <Eigen/Sparse>
+#include <algorithm>
+#include <cmath>
+
+namespace yade {
+namespace core = swelldem::core;
+using Vector2r = Eigen::Matrix<Real, 2, 1>;
+
+struct ImplicitLinearSystem {
+	using SpMat = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+	std::vector<int>                                   dofOf;      // 3 x body id + axis (x, y, rotation z) -> equation, -1 if held
+	std::vector<unsigned>                              dofMasks;   // blocked x, y, rz of each body when dofOf was made
+	std::vector<std::pair<int, int>>                   graph;      // the real contacts the pattern was made for
+	std::vector<int>                                   slots;      // per contact, the 21 entries of its 6 x 6 lower triangle (-1: held)
+	std::vector<int>                                   diagSlot;   // per equation
+	std::vector<char>                                  active;     // per contact: 0 intact, 1 open, 2 closed sticking, 3 sliding
+	std::vector<double>                                factored;   // values of the current factor
+	SpMat                                              K;
+	Eigen::CholmodDecomposition<SpMat, Eigen::Lower>   chol;
+	int                                                nEq = 0;
+	bool                                               haveFactor = false;
+};
+
+namespace {
+	// Lower-triangle index pairs (row a >= column b) of a contact's 6 x 6 block over
+	// (x1, y1, rz1, x2, y2, rz2).
+	struct PairTable {
+		int a[21], b[21];
+		PairTable()
+		{
+			int k = 0;
+			for (int j = 0; j < 6; ++j)
+				for (int i = j; i < 6; ++i)
+					a[k] = i, b[k] = j, ++k;
+		}
+	};
+	const PairTable kPairs;
+
+	// A real interaction's tangent: kn, ks [N/m] and its open / closed / sliding state.
+	char contactTangent(const Interaction* I, Real& kn, Real& ks)
+	{
+		if (const auto* sp = dynamic_cast<const SwellPhys*>(I->phys.get())) {
+			sp->kind->law().tangent(sp->state, kn, ks);
+			if (!sp->state.trial.broken) return 0;
+			return kn == 0 ? 1 : (ks == 0 ? 3 : 2);
+		}
+		const auto* p = static_cast<const NormShearPhys*>(I->phys.get());
+		kn = p->kn, ks = p->ks;
+		return 0;
+	}
+}
+
+ImplicitLogTimeSolver::ImplicitLogTimeSolver()
+{
+	tolerance      = 1e-10;
+	minIterations  = 1;
+	maxIterations  = 200;
+	colliderPeriod = 1;
+	iterationName  = "Newton";
+}
+
+ImplicitLogTimeSolver::~ImplicitLogTimeSolver() { }
+
+void ImplicitLogTimeSolver::postLoad()
+{
+	LogTimeSolver::postLoad();
+	core::require(regularization >= 0 && regularization < 1e-3, "ImplicitLogTimeSolver.regularization", regularization, "0 <= regularization < 1e-3");
+}
+
+void ImplicitLogTimeSolver::choosePins()
+{
+	// A specimen held nowhere in translation has three rigid-body modes (two translations, one
+	// rotation), which make K singular. They are removed by holding one disc near the centre in x
+	// and y and a second, far from it, across the line joining them: this moves the specimen as a
+	// rigid body only, so no force and no strain changes (tests/python/test_implicit_solver.py).
+	pinnedDofs.assign(1, -1); // decided: none
+	const auto& bodies = scene->bodies->body;
+	for (const auto& b : bodies)
+		if (b && (b->state->blockedDOFs & (State::DOF_X | State::DOF_Y))) return;
+	std::vector<int> degree(bodies.size(), 0);
+	const auto&      L = scene->interactions->linIntrs;
+	for (size_t i = 0; i < scene->interactions->currSize; ++i)
+		if (L[i]->isReal()) ++degree[L[i]->id1], ++degree[L[i]->id2];
+	Vector2r c = Vector2r::Zero();
+	long     n = 0;
+	for (const auto& b : bodies)
+		if (b && degree[b->id] >= 2) c += b->state->se3.position.head<2>(), ++n;
+	if (n < 2) return;
+	c /= Real(n);
+	int  a = -1, f = -1;
+	Real best = std::numeric_limits<Real>::infinity(), far = -1;
+	for (const auto& b : bodies)
+		if (b && degree[b->id] >= 2) {
+			const Real d = (b->state->se3.position.head<2>() - c).norm();
+			if (d < best) best = d, a = b->id;
+		}
+	const Vector2r pa = bodies[a]->state->se3.position.head<2>();
+	for (const auto& b : bodies)
+		if (b && degree[b->id] >= 2) {
+			const Real d = (b->state->se3.position.head<2>() - pa).norm();
+			if (d > far) far = d, f = b->id;
+		}
+	const Vector2r d = bodies[f]->state->se3.position.head<2>() - pa;
+	pinnedDofs       = { 3 * a, 3 * a + 1, 3 * f + (std::abs(d[0]) >= std::abs(d[1]) ? 1 : 0) };
+}
+
+void ImplicitLogTimeSolver::newtonStep()
+{
+	if (!sys) sys = std::make_unique<ImplicitLinearSystem>();
+	ImplicitLinearSystem& S      = *sys;
+	const auto&           bodies = scene->bodies->body;
+	const auto&           L      = scene->interactions->linIntrs;
+	std::vector<const Interaction*> contacts;
+	contacts.reserve(scene->interactions->currSize);
+	for (size_t i = 0; i < scene->interactions->currSize; ++i)
+		if (L[i]->isReal()) contacts.push_back(L[i].get());
+
+	// 1. Equation numbering and sparsity pattern, remade when the contact graph or the held DOFs change.
+	if (pinnedDofs.empty()) choosePins();
+	std::vector<unsigned> masks(bodies.size(), 0);
+	for (const auto& b : bodies)
+		if (b) masks[b->id] = b->state->blockedDOFs & (State::DOF_X | State::DOF_Y | State::DOF_RZ);
+	bool same = masks == S.dofMasks && contacts.size() == S.graph.size();
+	for (size_t c = 0; same && c < contacts.size(); ++c)
+		same = S.graph[c].first == contacts[c]->id1 && S.graph[c].second == contacts[c]->id2;
+	if (!same) {
+		S.dofMasks = masks;
+		S.dofOf.assign(3 * bodies.size(), -1);
+		S.nEq = 0;
+		const unsigned axisBit[3] = { State::DOF_X, State::DOF_Y, State::DOF_RZ };
+		for (const auto& b : bodies)
+			if (b && !b->isClump())
+				for (int d = 0; d < 3; ++d)
+					if (!(masks[b->id] & axisBit[d])) S.dofOf[3 * b->id + d] = S.nEq++;
+		for (int p : pinnedDofs)
+			if (p >= 0 && size_t(p) < S.dofOf.size()) S.dofOf[p] = -1;
+		S.nEq = 0; // renumber without the pins
+		for (int& e : S.dofOf)
+			if (e >= 0) e = S.nEq++;
+		S.graph.resize(contacts.size());
+		std::vector<Eigen::Triplet<double, int>> trip;
+		trip.reserve(contacts.size() * 21 + S.nEq);
+		for (int e = 0; e < S.nEq; ++e)
+			trip.emplace_back(e, e, 0.0);
+		for (size_t c = 0; c < contacts.size(); ++c) {
+			const Interaction* I = contacts[c];
+			S.graph[c]           = { I->id1, I->id2 };
+			int eq[6];
+			for (int d = 0; d < 3; ++d)
+				eq[d] = S.dofOf[3 * I->id1 + d], eq[3 + d] = S.dofOf[3 * I->id2 + d];
+			for (int k = 0; k < 21; ++k) {
+				const int r = eq[kPairs.a[k]], s = eq[kPairs.b[k]];
+				if (r >= 0 && s >= 0) trip.emplace_back(std::max(r, s), std::min(r, s), 0.0);
+			}
+		}
+		S.K.resize(S.nEq, S.nEq);
+		S.K.setFromTriplets(trip.begin(), trip.end());
+		S.K.makeCompressed();
+		S.slots.assign(21 * contacts.size(), -1);
+		S.diagSlot.assign(S.nEq, -1);
+		auto slotOf = [&](int row, int col) {
+			const int* inner = S.K.innerIndexPtr();
+			const int  lo = S.K.outerIndexPtr()[col], hi = S.K.outerIndexPtr()[col + 1];
+			return int(std::lower_bound(inner + lo, inner + hi, row) - inner);
+		};
+		for (int e = 0; e < S.nEq; ++e)
+			S.diagSlot[e] = slotOf(e, e);
+		for (size_t c = 0; c < contacts.size(); ++c) {
+			const Interaction* I = contacts[c];
+			int                eq[6];
+			for (int d = 0; d < 3; ++d)
+				eq[d] = S.dofOf[3 * I->id1 + d], eq[3 + d] = S.dofOf[3 * I->id2 + d];
+			for (int k = 0; k < 21; ++k) {
+				const int r = eq[kPairs.a[k]], s = eq[kPairs.b[k]];
+				if (r >= 0 && s >= 0) S.slots[21 * c + k] = slotOf(std::max(r, s), std::min(r, s));
+			}
+		}
+		S.chol.setMode(Eigen::CholmodSupernodalLLt);
+		S.chol.analyzePattern(S.K);
+		S.factored.clear();
+		S.haveFactor = false;
+		S.active.assign(contacts.size(), 0);
+		++analyses;
+	}
+	if (S.nEq == 0) return;
+
+	// 2. Tangent values: K = sum over contacts of B^T diag(kn, ks) B with, over (x1, y1, rz1, x2, y2, rz2),
+	//    normal row (-n, 0, n, 0) and shear row (-t, -r1, t, -r2), t = ez x n (the increments YADE's ScGeom
+	//    gives the law).
+	double* v = S.K.valuePtr();
+	std::fill(v, v + S.K.nonZeros(), 0.0);
+	long changes = 0;
+	for (size_t c = 0; c < contacts.size(); ++c) {
+		const Interaction* I = contacts[c];
+		Real               kn, ks;
+		const char         state = contactTangent(I, kn, ks);
+		changes += state != S.active[c];
+		S.active[c] = state;
+		if (kn == 0 && ks == 0) continue;
+		const auto*    g = static_cast<const ScGeom*>(I->geom.get());
+		const Vector3r& n = g->normal;
+		const Real      r1 = g->radius1 - 0.5 * g->penetrationDepth, r2 = g->radius2 - 0.5 * g->penetrationDepth;
+		const Real      bn[6] = { -n[0], -n[1], 0, n[0], n[1], 0 };
+		const Real      bs[6] = { n[1], -n[0], -r1, -n[1], n[0], -r2 };
+		const int*      slot  = &S.slots[21 * c];
+		for (int k = 0; k < 21; ++k)
+			if (slot[k] >= 0) v[slot[k]] += kn * bn[kPairs.a[k]] * bn[kPairs.b[k]] + ks * bs[kPairs.a[k]] * bs[kPairs.b[k]];
+	}
+	activeChanges = changes;
+	// A DOF that no contact holds in the current state (a loose disc, a disc whose contacts are all
+	// open) moves under its own load as if one typical contact held it, so that it can close them.
+	double kScale = 0;
+	for (const Interaction* I : contacts)
+		kScale += std::abs(static_cast<const NormShearPhys*>(I->phys.get())->kn);
+	kScale = contacts.empty() ? 1.0 : kScale / contacts.size();
+	for (int e = 0; e < S.nEq; ++e) {
+		double& d = v[S.diagSlot[e]];
+		d += d > 0 ? regularization * d : (kScale > 0 ? kScale : 1.0);
+	}
+
+	// 3. Factor (only when the tangent changed: a new step of an aging kind, a break, a state change).
+	if (!S.haveFactor || S.factored.size() != size_t(S.K.nonZeros()) || !std::equal(v, v + S.K.nonZeros(), S.factored.begin())) {
+		S.chol.factorize(S.K);
+		++factorizations;
+		if (S.chol.info() != Eigen::Success)
+			fail("the tangent stiffness (" + std::to_string(S.nEq) + " equations) is not positive definite; CHOLMOD could not factor it");
+		S.factored.assign(v, v + S.K.nonZeros());
+		S.haveFactor = true;
+	}
+
+	// 4. Residual from YADE's forces, solve, move the bodies through their velocities.
+	Eigen::VectorXd r(S.nEq);
+	for (const auto& b : bodies) {
+		if (!b) continue;
+		const Vector3r& f = scene->forces.getForce(b->id);
+		const Vector3r& t = scene->forces.getTorque(b->id);
+		const Real      val[3] = { f[0], f[1], t[2] };
+		for (int d = 0; d < 3; ++d)
+			if (S.dofOf[3 * b->id + d] >= 0) r[S.dofOf[3 * b->id + d]] = val[d];
+	}
+	const Eigen::VectorXd du = S.chol.solve(r);
+	if (!du.allFinite()) fail("the linear solve gave a non-finite displacement");
+	const Real dt = scene->dt;
+	for (const auto& b : bodies) {
+		if (!b) continue;
+		State*    s = b->state.get();
+		const int* e = &S.dofOf[3 * b->id];
+		for (int d = 0; d < 2; ++d) {
+			const Real u = e[d] >= 0 ? du[e[d]] : 0.0;
+			s->vel[d]    = u / dt;
+			s->se3.position[d] += u;
+		}
+		const Real th = e[2] >= 0 ? du[e[2]] : 0.0;
+		s->angVel     = Vector3r(0, 0, th / dt);
+		if (th != 0) {
+			s->se3.orientation = Quaternionr(Eigen::AngleAxis<Real>(th, Vector3r::UnitZ())) * s->se3.orientation;
+			s->se3.orientation.normalize();
+		}
+	}
+}
+
+void ImplicitLogTimeSolver::action()
+{
+	if (!startIteration()) return;
+	const Balance b = measureBalance();
+	struct Track {
+		ImplicitLogTimeSolver* self;
+		~Track() { self->trackHeldBodies(); }
+	} track { this };
+	switch (settleStep(b, b.ratio <= tolerance || b.atRoundOff)) {
+		case StepOutcome::Committed: return;
+		case StepOutcome::Broke: // the next pass computes the forces without the broken contacts
+			zeroVelocities(scene);
+			return;
+		case StepOutcome::Continue: newtonStep(); return;
+	}
+}
+
+} // namespace yade

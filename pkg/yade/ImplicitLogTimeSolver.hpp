@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Exact quasi-static solver: within a physical step every intact contact is linear (kn'', ks'' and
+// the imposed creep + swelling displacements are fixed), so the step's equilibrium is a sparse
+// symmetric positive definite system K du = r. Each iteration takes r from YADE itself (the
+// bodies' forces after the InteractionLoop pass of the real contact law: the law stays the only
+// force path), solves with a CHOLMOD supernodal Cholesky factor of the tangent stiffness and moves
+// the bodies by du through their velocities (ScGeom integrates the shear from them). A linear
+// step converges in one solve plus the pass that checks it; damage and the broken contacts'
+// open / closed / sliding states make it an active-set Newton iteration. The factor is reused
+// while the tangent is unchanged and its symbolic analysis while the contact graph is.
+#pragma once
+#include "LogTimeSolver.hpp"
+#include <memory>
+
+namespace yade {
+
+struct ImplicitLinearSystem; // the sparse matrix and its factor (Eigen + CHOLMOD), kept out of this header
+
+class ImplicitLogTimeSolver : public LogTimeSolver {
+public:
+#define SWELLDEM_IMPLICIT_ATTRS(X)                                                                                                                             \
+	X(Real, regularization, 1e-12, swelldem_attr::Setting,                                                                                                \
+	  "Relative diagonal shift of the tangent for local mechanisms (a disc held by one contact, open cracks): it changes "                         \
+	  "the iteration path, never the converged equilibrium, which is YADE's residual at the tolerance [-]")                                         \
+	X(long, factorizations, 0, swelldem_attr::Result, "Numeric Cholesky factorizations so far [-]")                                                    \
+	X(long, analyses, 0, swelldem_attr::Result, "Symbolic analyses (contact graph changes) so far [-]")                                               \
+	X(long, activeChanges, 0, swelldem_attr::Result, "Contacts whose open / closed / sliding state changed in the last iteration [-]")              \
+	X(std::vector<int>, pinnedDofs, std::vector<int>(), swelldem_attr::Internal,                                                                       \
+	  "Degrees of freedom held to remove a free specimen's rigid-body modes, as 3 x body id + axis (0 x, 1 y) [-]")
+	SWELLDEM_CLASS(ImplicitLogTimeSolver, LogTimeSolver,
+	               "Quasi-static log-time solver for 2D swelldem scenes with an exact equilibrium at each physical step: Newton "
+	               "iterations on YADE's own residual with a sparse Cholesky factor (CHOLMOD) of the contacts' step stiffness, "
+	               "breaks at equilibrium and an active set for broken contacts. Replaces NewtonIntegrator; put it last in "
+	               "O.engines. Defaults differ from the ADR's: tolerance 1e-10, minIterations 1, maxIterations 200, colliderPeriod 1.",
+	               SWELLDEM_IMPLICIT_ATTRS)
+	ImplicitLogTimeSolver();
+	virtual ~ImplicitLogTimeSolver();
+	void action() override;
+	void postLoad();
+	template <class C> static void pyMethods(C&) { }
+
+private:
+	void                                  choosePins();
+	void                                  newtonStep();
+	std::unique_ptr<ImplicitLinearSystem> sys;
+};
+
+} // namespace yade
