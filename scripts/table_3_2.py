@@ -20,15 +20,16 @@ import sys
 import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "py"))
+from swelldem import paper  # noqa: E402
 
 ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
 ap.add_argument("--size-mm", type=float, nargs=2, default=(20.0, 20.0), metavar=("W", "H"), help="specimen size [mm]")
 ap.add_argument("--seed", type=int, default=1)
-ap.add_argument("--case", choices=("isr", "asr"), default="isr")
+ap.add_argument("--case", choices=tuple(paper.KINETICS), default="isr")
 ap.add_argument("--steps-per-decade", type=float, default=10)
 ap.add_argument("--tolerance", type=float, default=1e-5, help="ADR unbalanced-force ratio")
 ap.add_argument("--young", type=float, default=30e9, help="contact modulus E_c [Pa] (the free swelling strain does not depend on it)")
-ap.add_argument("--eps-inf", type=float, default=1000e-6, help="target ultimate free swelling strain [-]")
+ap.add_argument("--eps-inf", type=float, default=paper.EPS_INF, help="target ultimate free swelling strain [-]")
 ap.add_argument("--t-start", type=float, default=0.01, help="age of the stress-free start [day]")
 ap.add_argument("--d-inf-rule", choices=("mean-radius", "contact-length"), default="mean-radius",
                 help="mean-radius: the paper's d_inf = eps_inf x 2 R_mean on every contact; contact-length: "
@@ -43,9 +44,8 @@ if min(args.size_mm) < 4:
 
 import numpy as np
 import yade
-from yade import wrapper as W
 
-from swelldem import measure, meso, scene
+from swelldem import dem, measure, meso
 
 O = yade.Omega()
 PAPER_EPS_FINAL = 1061e-6
@@ -55,13 +55,13 @@ os.makedirs(args.out, exist_ok=True)
 a = meso.generate(seed=args.seed, width_mm=args.size_mm[0], height_mm=args.size_mm[1], aggregate_area_fraction=0.0)
 r_mean = float(a.r.mean())
 d_inf = args.eps_inf * 2 * r_mean
-tau_c, tau_l, t_end = scene.KINETICS[args.case]
-kind = scene.contact_kind("MORTAR", behaviour="elastic", young=args.young, b3="mortar", swell_disp_inf=d_inf, kinetics=args.case)
-solver = W.AdrLogTimeIntegrator(tStart=args.t_start, tEnd=t_end, stepsPerDecade=args.steps_per_decade, tolerance=args.tolerance,
-                                label="solver")
-ys = meso.to_yade(a, {"MORTAR": kind}, solver)
+tau_c, tau_l, t_end = paper.KINETICS[args.case]
+kind = dem.contact_kind("MORTAR", behaviour="elastic", young=args.young, b3="mortar", swell_disp_inf=d_inf, kinetics=args.case)
+solver = dem.make_solver("adr", tStart=args.t_start, tEnd=t_end, stepsPerDecade=args.steps_per_decade, tolerance=args.tolerance,
+                         label="solver")
+ys = dem.to_yade(a, {"MORTAR": kind}, solver)
 if args.d_inf_rule == "contact-length":
-    meso.set_contact_swelling(ys, np.arange(a.n_contacts), args.eps_inf * a.distance_m)
+    dem.set_contact_swelling(ys, np.arange(a.n_contacts), args.eps_inf * a.distance_m)
 ref = np.column_stack([a.x, a.y])
 # The strain is measured on the load-bearing skeleton: particles with at least 2 contacts. The
 # packing leaves a few discs held only by the specimen sides (0 or 1 contact with another disc);
@@ -85,14 +85,14 @@ def table_3_2_record():
 
 
 solver.stepHook = table_3_2_record
-scene.run_to_end(solver)
+dem.run_to_end(solver)
 
 # Contact forces at the end: free swelling of a disordered network leaves self-stress, because
 # one d_inf on contacts of different lengths L is not a compatible (affine) strain field.
 fn = np.array([ys.interaction(c).phys.Fn for c in range(a.n_contacts)])
 L, A = a.distance_m, a.facet_area_m2
 eps_x, eps_y = hist["eps_x"][-1], hist["eps_y"][-1]
-xi_end, xi_start = float(scene.larive_xi(t_end, args.case)), float(scene.larive_xi(args.t_start, args.case))
+xi_end, xi_start = float(paper.larive_xi(t_end, args.case)), float(paper.larive_xi(args.t_start, args.case))
 res = {
     "case": args.case, "d_inf_rule": args.d_inf_rule, "size_mm": list(args.size_mm), "seed": args.seed, "n_particles": a.n_particles, "n_contacts": a.n_contacts,
     "n_new_contacts": sum(1 for i in O.interactions if i.isReal) - a.n_contacts,
@@ -132,7 +132,7 @@ ax.semilogx(t, np.array(hist["eps_x"][1:]) * 1e6, "o-", ms=3, label="x (affine f
 ax.semilogx(t, np.array(hist["eps_y"][1:]) * 1e6, "s-", ms=3, mfc="none", label="y (affine fit)")
 ax.semilogx(t, 0.5 * (np.array(hist["eps_side_x"][1:]) + np.array(hist["eps_side_y"][1:])) * 1e6, ":", label="mean, between sides")
 tt = np.array(t)
-xi = scene.larive_xi(tt, args.case)
+xi = paper.larive_xi(tt, args.case)
 ax.semilogx(tt, args.eps_inf * xi * 1e6, "k--", lw=0.8, label="eps_inf xi(t) (micro-macro rule)")
 ax.axhline(PAPER_EPS_FINAL * 1e6, color="r", lw=0.8, label="paper, Table 3.2: 1061")
 ax.set_xlabel("time [day]")

@@ -13,9 +13,10 @@ import sys
 import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "py"))
+from swelldem import paper  # noqa: E402
 
 ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-ap.add_argument("--case", choices=("isr", "asr"), default="isr")
+ap.add_argument("--case", choices=tuple(paper.KINETICS), default="isr")
 ap.add_argument("--steps-per-decade", type=float, default=10)
 ap.add_argument("--out", default="out/two_particles")
 ap.add_argument("--behaviour", choices=("elastic", "aging-elastic", "viscoelastic"), default=None,
@@ -24,28 +25,28 @@ ap.add_argument("--restrained", action="store_true", help="hold both discs: rela
 ap.add_argument("--tolerance", type=float, default=1e-6, help="ADR unbalanced-force ratio")
 ap.add_argument("--t-start", type=float, default=0.01, help="age of the stress-free start [day]")
 args = ap.parse_args(sys.argv[1:])
-if args.steps_per_decade <= 0:
-    sys.exit(f"two_particles.py: --steps-per-decade = {args.steps_per_decade} is out of range; allowed: > 0")
 
-from yade import wrapper as W
-import yade
-from swelldem import scene
+from yade import wrapper as W  # noqa: E402
+import yade  # noqa: E402
+from swelldem import dem  # noqa: E402
 
 O = yade.Omega()
-R, D_INF = 0.5, 1000e-6
+R, D_INF = 0.5, 1000e-6  # [m] the paper's Table 3.1 pair: d_inf = eps_inf x 2 R with eps_inf = 1000e-6
 behaviour = args.behaviour or ("viscoelastic" if args.restrained else "elastic")
-tau_c, tau_l, t_end = scene.KINETICS[args.case]
+t_end = paper.KINETICS[args.case][2]
+try:  # the plugin's constructors validate the settings, before any work
+    kind = dem.contact_kind("MORTAR", behaviour=behaviour, young=30e9, b3="mortar", swell_disp_inf=D_INF, kinetics=args.case)
+    solver = dem.make_solver("adr", tStart=args.t_start, tEnd=t_end, stepsPerDecade=args.steps_per_decade, tolerance=args.tolerance,
+                             label="solver")
+except ValueError as e:
+    sys.exit(f"two_particles.py: {e}")
 os.makedirs(args.out, exist_ok=True)
 t0 = time.time()
 
-O.reset()
+# The pair touches (centre distance 2R): the collider finds the contact at the first iteration.
 mat = W.ConcreteMat(young=30e9, poisson=0.2, density=2400, aggregateId=-1, label="mortar")
-O.materials.append(mat)
-kind = scene.contact_kind("MORTAR", behaviour=behaviour, young=30e9, b3="mortar", swell_disp_inf=D_INF, kinetics=args.case)
-O.bodies.append([scene.disc((0, 0), R, mat, fixed=True), scene.disc((2 * R, 0), R, mat, fixed=args.restrained)])
-solver = W.AdrLogTimeIntegrator(tStart=args.t_start, tEnd=t_end, stepsPerDecade=args.steps_per_decade, tolerance=args.tolerance,
-                                label="solver")
-O.engines = scene.engines(W.Ip2_ConcreteMat_ConcreteMat_SwellPhys(mortar=kind, itz=kind, agg=kind), solver)
+dem.build_scene([0.0, 2 * R], [0.0, 0.0], [R, R], [mat], W.Ip2_ConcreteMat_ConcreteMat_SwellPhys(mortar=kind, itz=kind, agg=kind),
+                W.Law2_ScGeom_SwellPhys_AgingSwelling(), solver, fixed=[0, 1] if args.restrained else [0], detection_factor=1.05)
 history = {"times_days": [args.t_start], "strain": [0.0], "fn_N": [0.0]}
 
 
@@ -57,7 +58,7 @@ def record():
 
 
 solver.stepHook = record
-scene.run_to_end(solver)
+dem.run_to_end(solver)
 i = O.interactions[0, 1]
 res = {"case": args.case, "steps_per_decade": args.steps_per_decade, "behaviour": behaviour, "restrained": args.restrained,
        "times_days": history["times_days"], "strain": history["strain"], "eps_final": history["strain"][-1],

@@ -3,12 +3,14 @@
 and figures. Plain Python: it reads results.json dictionaries (and, for the crack map, the list
 of broken contacts with the assembly's facet segments)."""
 import csv
+import json
 import math
 import os
 
 import numpy as np
 
-KIND_NAMES = ("MORTAR", "ITZ", "AGG")
+from .paper import KIND_NAMES
+
 LABEL = {"isr": "ISR", "asr-fine": "ASR-fine agg.", "asr-coarse": "ASR-coarse agg."}
 COLORS = {"MORTAR": "tab:blue", "ITZ": "tab:red", "AGG": "tab:green"}
 
@@ -134,11 +136,23 @@ def plot_crack_map(out, res, assembly, broken_contacts):
     plt.close(fig)
 
 
-def write_all(out, res, assembly, contact_arrays, O):
+def write_all(out, res, assembly, broken_contacts):
+    """Tables, curves and the crack map; broken_contacts: (id1, id2, kindId) of the broken contacts."""
     write_tables(out, res)
     plot_curves(out, res)
-    broken = [(i.id1, i.id2, i.phys.kindId) for i in O.interactions if i.isReal and i.phys.broken]
-    plot_crack_map(out, res, assembly, broken)
+    plot_crack_map(out, res, assembly, broken_contacts)
+
+
+def write_results(out, res):
+    """res as out/results.json (written to a temporary file, then renamed: never half a file),
+    with each per-kind series also as a flat key '<series>_<KIND>' (e.g. broken_ITZ)."""
+    flat = dict(res)
+    for name, d in res["per_kind"].items():
+        for key, v in d.items():
+            flat[f"{key}_{name}"] = v
+    with open(os.path.join(out, "results.json.tmp"), "w") as f:
+        json.dump(flat, f, indent=1, default=float)
+    os.replace(os.path.join(out, "results.json.tmp"), os.path.join(out, "results.json"))
 
 
 def compare(reference, others):

@@ -2,11 +2,13 @@
 """The paper's numerical swelling tests on a generated concrete specimen (ISR, ASR-fine, ASR-coarse),
 with elastic (modulus developing with age) or aging viscoelastic contacts, with or without damage.
 
-Run inside YADE with the plugin (scripts/swelling_test.py is the command-line face):
+Run inside YADE with the plugin (scripts/swelling_test.py is the command-line face, generated from
+the fields of :class:`SwellingTest`):
 
     from swelldem import scenario
     res = scenario.run(scenario.SwellingTest(scenario="isr", behaviour="viscoelastic", damage=True,
-                                             size_mm=(30, 30), out="out/isr"))
+                                             size_mm=(30, 30), out="out/isr",
+                                             kind_params={"MORTAR": {"tensileStrength": 5e6}}))
 
 Decisions (docs/scenarios.md explains them):
 - the paper's Table 3.3 q's are its micro (contact) parameters q_i*, and they are used as such by
@@ -14,117 +16,180 @@ Decisions (docs/scenarios.md explains them):
   derives the contact values through the factor beta measured on a random mortar assembly of the
   same packing (calibrate_modulus_factor: contacts of modulus E_c give a macroscopic modulus
   beta E_c, so E_c = E / beta and each micro q_i = beta q_i, the law being linear in the
-  compliance). beta is measured and reported in both cases (the macroscopic moduli it implies);
+  compliance). The calibration is a second simulation, run only for "macro";
 - 'elastic' runs use aging-elastic mortar and ITZ contacts, E(t) = 1/J(t + 0.01 d, t) of the same
   B3 q's (the paper: "included the development over time of mortar and ITZ modulus");
-  aggregate contacts are linear elastic (modulus AGGREGATE_YOUNG, an assumption: the paper gives none);
+  aggregate contacts are linear elastic (modulus paper.AGGREGATE_YOUNG, an assumption: the paper gives none);
 - the specimen is free (no support); strains are the least-squares affine fit of all displacements.
+
+Validation: what ends up as a ContactKind or solver attribute is validated by the plugin's
+constructors, which run first, before the mesostructure is generated; this module checks only
+what it uses itself (scenario, behaviour, size, seed, the factors it applies, output folder).
 """
-import json
+import ast
+import math
 import os
 import time
-from dataclasses import asdict, dataclass, field
+from dataclasses import MISSING, asdict, dataclass, field, fields
 
-import numpy as np
+from . import paper
 
-KIND_NAMES = ("MORTAR", "ITZ", "AGG")
-# Paper Table 3.5: tensile strengths [Pa].
-TENSILE_STRENGTH = {"MORTAR": 4e6, "ITZ": 2e6, "AGG": 6e6}
-# Paper Table 3.3 materials of each contact kind.
-B3_OF_KIND = {"MORTAR": "mortar", "ITZ": "itz"}
-AGGREGATE_YOUNG = 60e9  # [Pa] a sound siliceous/calcareous aggregate; not given by the paper
-SCENARIOS = {
-    "isr": {"kinetics": "isr", "swelling_kinds": ("MORTAR", "ITZ")},
-    "asr-fine": {"kinetics": "asr", "swelling_kinds": ("MORTAR",)},
-    "asr-coarse": {"kinetics": "asr", "swelling_kinds": ()},  # a fraction of AGG contacts: gel pockets
-}
 BEHAVIOURS = ("elastic", "viscoelastic")
+PARAMETERS = ("paper-micro", "macro")
 
 
 def _bad(name, value, allowed):
     raise ValueError(f"swelldem: {name} = {value!r} is out of range; allowed: {allowed}")
 
 
+def _field(default, help, unit=None, flag=None, choices=None, sets=None, factory=None):
+    """A SwellingTest field with its help text, unit, command-line flag (default --the-name),
+    choices and the plugin attribute it sets (whose constructor validates it)."""
+    meta = {"help": help, "unit": unit, "flag": flag, "choices": choices, "sets": sets}
+    return field(default_factory=factory, metadata=meta) if factory else field(default=default, metadata=meta)
+
+
 @dataclass
 class SwellingTest:
-    """One swelling test. Lengths in mm where the name says so, times in days."""
-    scenario: str = "isr"                 # isr | asr-fine | asr-coarse
-    behaviour: str = "viscoelastic"       # elastic (aging modulus) | viscoelastic (aging, B3)
-    damage: bool = True                   # brittle contacts (paper Table 3.5 strengths)
-    size_mm: tuple = (30.0, 30.0)         # specimen width, height [mm]
-    seed: int = 1                         # mesostructure seed
-    steps_per_decade: float = 10          # physical steps per decade of log time
-    tolerance: float = 1e-4               # ADR unbalanced-force ratio
-    t_start_days: float = 1.0             # age of the stress-free start [day]
-    t_end_days: float = 0.0               # 0: the paper's (3650 d ISR, 50000 d ASR)
-    eps_inf: float = 1000e-6              # ultimate free swelling strain of the swelling material [-]
-    gel_fraction: float = 0.1             # asr-coarse: share of AGG contacts that swell [-]
-    shear_ratio: float = 0.3              # ks / kn of every contact [-]
-    aggregate_young: float = AGGREGATE_YOUNG  # contact modulus of aggregate contacts (paper-micro) [Pa]
-    strength_scale: float = 1.0           # factor on the paper's tensile strengths [-]
-    kelvin_units_per_decade: float = 1.0  # Kelvin chain density [1/decade]
-    parameters: str = "paper-micro"       # paper-micro: Table 3.3 q's and AGGREGATE_YOUNG are contact values; macro: scaled by beta
-    aggregate_area_fraction: float = -1   # < 0: the generator's default
-    vtk_every: int = 0                    # VTK every k physical steps (0: only the last)
-    out: str = "out/swelling"
-    extra: dict = field(default_factory=dict)
+    """One swelling test: every parameter with its unit and meaning (also the command line of
+    scripts/swelling_test.py)."""
+    scenario: str = _field("isr", "the paper's swelling test", choices=tuple(paper.SCENARIOS))
+    behaviour: str = _field("viscoelastic", "contacts: elastic (mortar and ITZ modulus aging with B3) or aging viscoelastic (B3)",
+                            choices=BEHAVIOURS)
+    damage: bool = _field(True, "brittle contacts with the paper's Table 3.5 strengths (--no-damage: never break)",
+                          sets="ContactKind.damage")
+    size_mm: tuple = _field((30.0, 30.0), "specimen width and height", unit="mm")
+    seed: int = _field(1, "mesostructure seed (integer >= 0)")
+    solver: str = _field("adr", "quasi-static solver: adr (adaptive dynamic relaxation) or implicit", choices=("adr", "implicit"))
+    steps_per_decade: float = _field(10.0, "physical steps per decade of log time", sets="solver.stepsPerDecade")
+    tolerance: float = _field(1e-4, "unbalanced-force ratio at which a step has converged", sets="solver.tolerance")
+    t_start_days: float = _field(1.0, "age of the stress-free start", unit="day", flag="--t-start", sets="solver.tStart")
+    t_end_days: float = _field(0.0, "last time (0: the paper's, 3650 ISR / 50000 ASR)", unit="day", flag="--t-end", sets="solver.tEnd")
+    eps_inf: float = _field(paper.EPS_INF, "ultimate free swelling strain of the swelling material (d_inf = eps_inf x 2 R_mean)", unit="-")
+    gel_fraction: float = _field(0.1, "asr-coarse: share of the aggregate contacts that swell (gel pockets)", unit="-")
+    shear_ratio: float = _field(0.3, "ks / kn of every contact", unit="-", sets="ContactKind.shearRatio")
+    aggregate_young: float = _field(paper.AGGREGATE_YOUNG, "contact modulus of aggregate contacts", unit="Pa", sets="ContactKind(AGG).young")
+    strength_scale: float = _field(1.0, "factor on the paper's Table 3.5 tensile strengths", unit="-")
+    kelvin_units_per_decade: float = _field(1.0, "Kelvin chain density", unit="1/decade", sets="ContactKind.kelvinUnitsPerDecade")
+    parameters: str = _field("paper-micro", "read the paper's Table 3.3 q's (and the aggregate modulus) as contact values "
+                                            "(paper-micro), or as macroscopic ones scaled by the measured beta (macro)", choices=PARAMETERS)
+    aggregate_area_fraction: float = _field(-1.0, "aggregate area fraction of the specimen (< 0: the generator's default)", unit="-")
+    kind_params: dict = _field(None, "per-kind ContactKind attributes, KIND.attribute=value (repeatable), e.g. "
+                                     "MORTAR.tensileStrength=5e6 [Pa]; contact values, applied last (after eps_inf, "
+                                     "strength_scale and, in macro, the beta scaling of q's and young)",
+                               flag="--kind-param", sets="ContactKind.<attribute>", factory=dict)
+    vtk_every: int = _field(0, "VTK every k physical steps (0: only the last)")
+    out: str = _field("out/swelling", "output folder")
 
     def validate(self):
-        if self.scenario not in SCENARIOS:
-            _bad("scenario", self.scenario, ", ".join(SCENARIOS))
+        """Checks what only Python uses; the plugin's constructors check the rest (run())."""
+        if self.scenario not in paper.SCENARIOS:
+            _bad("scenario", self.scenario, ", ".join(paper.SCENARIOS))
         if self.behaviour not in BEHAVIOURS:
             _bad("behaviour", self.behaviour, ", ".join(BEHAVIOURS))
-        if len(self.size_mm) != 2 or min(self.size_mm) <= 0:
-            _bad("size_mm", self.size_mm, "two positive lengths [mm]")
-        if not self.steps_per_decade > 0:
-            _bad("steps_per_decade", self.steps_per_decade, "> 0")
-        if not 0 < self.tolerance < 1:
-            _bad("tolerance", self.tolerance, "0 < tolerance < 1")
-        if not self.t_start_days > 0:
-            _bad("t_start_days", self.t_start_days, "> 0 [day]")
-        if self.t_end_days and self.t_end_days <= self.t_start_days:
-            _bad("t_end_days", self.t_end_days, f"> t_start_days = {self.t_start_days} (or 0 for the paper's)")
-        if not self.eps_inf >= 0:
-            _bad("eps_inf", self.eps_inf, ">= 0")
-        if not 0 <= self.gel_fraction <= 1:
+        if self.parameters not in PARAMETERS:
+            _bad("parameters", self.parameters, ", ".join(PARAMETERS))
+        if len(self.size_mm) != 2 or not all(0 < s < math.inf for s in self.size_mm):
+            _bad("size_mm", self.size_mm, "two finite lengths > 0 [mm]")
+        if not (isinstance(self.seed, int) and self.seed >= 0):
+            _bad("seed", self.seed, "an integer >= 0")
+        if not (0 <= self.eps_inf < math.inf):
+            _bad("eps_inf", self.eps_inf, "0 <= eps_inf < inf [-]")
+        if not (0 <= self.gel_fraction <= 1):
             _bad("gel_fraction", self.gel_fraction, "0 <= gel_fraction <= 1")
-        if not self.shear_ratio > 0:
-            _bad("shear_ratio", self.shear_ratio, "> 0")
-        if not self.aggregate_young > 0:
-            _bad("aggregate_young", self.aggregate_young, "> 0 [Pa]")
-        if not self.strength_scale > 0:
-            _bad("strength_scale", self.strength_scale, "> 0")
-        if self.parameters not in ("paper-micro", "macro"):
-            _bad("parameters", self.parameters, "paper-micro, macro")
-        if self.vtk_every < 0:
-            _bad("vtk_every", self.vtk_every, ">= 0")
+        if not (0 < self.strength_scale < math.inf):
+            _bad("strength_scale", self.strength_scale, "0 < strength_scale < inf")
+        if not (isinstance(self.vtk_every, int) and self.vtk_every >= 0):
+            _bad("vtk_every", self.vtk_every, "an integer >= 0")
+        if not (isinstance(self.out, str) and self.out):
+            _bad("out", self.out, "a folder name")
+        if not isinstance(self.kind_params, dict):
+            _bad("kind_params", self.kind_params, "a dict {kind name: {ContactKind attribute: value}}")
+        for name, attrs in self.kind_params.items():
+            if name not in paper.KIND_NAMES:
+                _bad("kind_params kind", name, ", ".join(paper.KIND_NAMES))
+            if not isinstance(attrs, dict):
+                _bad(f"kind_params['{name}']", attrs, "a dict {ContactKind attribute: value}")
 
     @property
     def t_end(self):
-        from .scene import KINETICS
-        return self.t_end_days or KINETICS[SCENARIOS[self.scenario]["kinetics"]][2]
+        """The last physical time [day]: t_end_days, or the paper's end of the scenario's kinetics."""
+        return self.t_end_days or paper.KINETICS[paper.SCENARIOS[self.scenario]["kinetics"]][2]
 
 
-def _yade():
+def parse_kind_param(text):
+    """'KIND.attribute=value' -> (KIND, attribute, value); value a Python literal (5e6, True, ...)
+    or else the text itself (viscoelastic)."""
+    head, eq, value = text.partition("=")
+    kind, dot, attr = head.partition(".")
+    if not (eq and dot and kind and attr):
+        _bad("kind_param", text, "KIND.attribute=value, e.g. MORTAR.tensileStrength=5e6")
+    try:
+        value = ast.literal_eval(value)
+    except (ValueError, SyntaxError):
+        pass
+    return kind.strip(), attr.strip(), value
+
+
+def add_arguments(parser):
+    """Adds one command-line option per SwellingTest field to an argparse parser."""
+    for f in fields(SwellingTest):
+        m = f.metadata
+        flag = m["flag"] or "--" + f.name.replace("_", "-")
+        unit = f" [{m['unit']}]" if m["unit"] and m["unit"] != "-" else ""
+        sets = f" (sets {m['sets']})" if m["sets"] else ""
+        default = f.default_factory() if f.default is MISSING else f.default
+        help_text = m["help"] + unit + sets
+        if f.type is bool or isinstance(default, bool):
+            if default:
+                parser.add_argument("--no-" + f.name.replace("_", "-"), dest=f.name, action="store_false", help=help_text)
+            else:
+                parser.add_argument(flag, dest=f.name, action="store_true", help=help_text)
+        elif isinstance(default, tuple):
+            parser.add_argument(flag, dest=f.name, type=type(default[0]), nargs=len(default), default=default,
+                                metavar=("W", "H") if f.name == "size_mm" else None, help=help_text + f" (default {default})")
+        elif isinstance(default, dict):
+            parser.add_argument(flag, dest=f.name, action="append", default=[], metavar="KIND.ATTR=VALUE", help=help_text)
+        else:
+            parser.add_argument(flag, dest=f.name, type=type(default), default=default, choices=m["choices"],
+                                help=help_text + f" (default {default})")
+
+
+def from_arguments(ns):
+    """The SwellingTest of parsed arguments (see add_arguments); ValueError for a malformed --kind-param."""
+    kw = {f.name: getattr(ns, f.name) for f in fields(SwellingTest)}
+    kw["size_mm"] = tuple(kw["size_mm"])
+    params = {}
+    for text in kw["kind_params"]:
+        kind, attr, value = parse_kind_param(text)
+        params.setdefault(kind, {})[attr] = value
+    kw["kind_params"] = params
+    return SwellingTest(**kw)
+
+
+def _dem():
+    from . import dem
     from .plugin import require
-    return require("swelldem.scenario")
+    require("swelldem.scenario")
+    return dem
 
 
 def calibrate_modulus_factor(shear_ratio=0.3, seed=11, size_mm=15.0, strain=1e-4, **meso_overrides):
     """beta = E_macro / E_c of a random mortar assembly (no aggregates) whose contacts have modulus
     E_c and shear ratio `shear_ratio`, from a uniaxial tension test solved with the ADR solver:
     the left band held in x, the right band moved by strain x width, y free but for one disc."""
-    yade, W = _yade()
-    from . import meso, scene
+    dem = _dem()
+    from . import meso
+    from .dem.uniaxial import bands
+    import numpy as np
+    import yade
     a = meso.generate(seed=seed, width_mm=size_mm, height_mm=size_mm, aggregate_area_fraction=0, **meso_overrides)
     e_c = 1e9
-    kind = scene.contact_kind("MORTAR", behaviour="elastic", young=e_c, shear_ratio=shear_ratio)
-    solver = W.AdrLogTimeIntegrator(tStart=1.0, tEnd=10.0, stepsPerDecade=1, tolerance=1e-6, verbose=False)
-    meso.to_yade(a, {"MORTAR": kind}, solver)
+    kind = dem.contact_kind("MORTAR", behaviour="elastic", young=e_c, shear_ratio=shear_ratio)
+    solver = dem.make_solver("adr", tStart=1.0, tEnd=10.0, stepsPerDecade=1, tolerance=1e-6, verbose=False)
+    dem.to_yade(a, {"MORTAR": kind}, solver)
     O = yade.Omega()
-    band = 1.5 * a.r.max()
-    left = np.flatnonzero(a.x - a.r < band)
-    right = np.flatnonzero(a.x + a.r > a.width_m - band)
+    left, right = bands(a)
     delta = strain * a.width_m
     for i in left:
         O.bodies[int(i)].state.blockedDOFs = "xzXY"
@@ -134,149 +199,107 @@ def calibrate_modulus_factor(shear_ratio=0.3, seed=11, size_mm=15.0, strain=1e-4
         b = O.bodies[int(i)]
         b.state.blockedDOFs = "xzXY"
         b.state.pos = b.state.pos + yade.Vector3(delta, 0, 0)
-    scene.run_to_end(solver)
+    dem.run_to_end(solver)
     reaction = -sum(O.forces.f(int(i))[0] for i in right)
     sigma = reaction / (a.height_m * a.thickness_m)
     beta = sigma / strain / e_c
-    return {"beta": beta, "e_macro_per_e_c": beta, "n_particles": len(a.x), "size_mm": size_mm, "seed": seed,
+    return {"run": True, "beta": beta, "e_macro_per_e_c": beta, "n_particles": len(a.x), "size_mm": size_mm, "seed": seed,
             "shear_ratio": shear_ratio, "strain": strain, "adr_iterations": solver.totalIterations}
 
 
-def make_kinds(test, beta, d_inf):
-    """The three ContactKind objects of a test (micro parameters from the macro ones through beta)."""
-    from .scene import contact_kind
-    sc = SCENARIOS[test.scenario]
+def make_kinds(test):
+    """The three ContactKind objects of a test with the paper's values as contact values, the
+    test's factors and its kind_params; each constructor validates its values. Swelling kinds get
+    swellDispInf 0 here: it depends on the mesostructure (set_swelling)."""
+    dem = _dem()
+    sc = paper.SCENARIOS[test.scenario]
     kinds = {}
-    for name in KIND_NAMES:
+    for name in paper.KIND_NAMES:
         swells = name in sc["swelling_kinds"] or (test.scenario == "asr-coarse" and name == "AGG")
         common = dict(shear_ratio=test.shear_ratio, kinetics=sc["kinetics"], damage=test.damage,
-                      tensile_strength=TENSILE_STRENGTH[name] * test.strength_scale, swelling=swells,
-                      swell_disp_inf=d_inf if name in sc["swelling_kinds"] else 0.0)
+                      tensile_strength=paper.TENSILE_STRENGTH[name] * test.strength_scale, swelling=swells)
         if name == "AGG":
-            k = contact_kind(name, behaviour="elastic", young=test.aggregate_young / beta, **common)
+            kinds[name] = dem.contact_kind(name, behaviour="elastic", young=test.aggregate_young, **common,
+                                           **test.kind_params.get(name, {}))
         else:
             behaviour = "viscoelastic" if test.behaviour == "viscoelastic" else "aging-elastic"
-            k = contact_kind(name, behaviour=behaviour, b3=B3_OF_KIND[name], **common)
-            k.q1, k.q2, k.q3, k.q4 = (beta * q for q in (k.q1, k.q2, k.q3, k.q4))
-            k.kelvinUnitsPerDecade = test.kelvin_units_per_decade
-        kinds[name] = k
+            extra = {"kelvinUnitsPerDecade": test.kelvin_units_per_decade, **test.kind_params.get(name, {})}
+            kinds[name] = dem.contact_kind(name, behaviour=behaviour, b3=paper.B3_OF_KIND[name], **common, **extra)
     return kinds
 
 
-class _Recorder:
-    """Per converged physical step: strains, force quantiles and broken contacts per kind."""
-
-    def __init__(self, test, assembly, yscene, solver, res, out):
-        self.test, self.a, self.ys, self.solver, self.res, self.out = test, assembly, yscene, solver, res, out
-        self.ref = np.column_stack([assembly.x, assembly.y])
-        # Strain of the load-bearing skeleton: discs with fewer than 2 contacts (held by the
-        # specimen's sides during packing) are loose in a free specimen and do not follow it.
-        self.weights = np.where(assembly.coordination() >= 2, assembly.r ** 2, 0.0)
-        self.t0 = time.time()
-
-    def contact_arrays(self):
-        yade, _ = _yade()
-        O = yade.Omega()
-        kind, fn, broken = [], [], []
-        for i in O.interactions:
-            if not i.isReal:
-                continue
-            p = i.phys
-            kind.append(p.kindId)
-            fn.append(p.Fn)
-            broken.append(p.broken)
-        return np.array(kind, dtype=int), np.array(fn), np.array(broken, dtype=bool)
-
-    def __call__(self):
-        from .measure import affine_strain
-        yade, _ = _yade()
-        O = yade.Omega()
-        cur = np.array([[O.bodies[int(i)].state.pos[0], O.bodies[int(i)].state.pos[1]] for i in self.ys.ids])
-        s = affine_strain(self.ref, cur, weights=self.weights)
-        kind, fn, broken = self.contact_arrays()
-        r = self.res
-        r["times_days"].append(self.solver.physTime)
-        r["swelling_strain_x"].append(s["eps_xx"])
-        r["swelling_strain_y"].append(s["eps_yy"])
-        r["unbalanced_ratio"].append(self.solver.unbalanced)
-        r["adr_iterations_per_step"].append(int(self.solver.stepIterations[-1]))
-        r["step_at_round_off"].append(bool(self.solver.stepRoundOff[-1]))
-        for k, name in enumerate(KIND_NAMES):
-            sel = kind == k
-            q05, q95 = (np.quantile(fn[sel], [0.05, 0.95]) / 1e3).tolist() if sel.any() else (float("nan"),) * 2
-            r["per_kind"][name]["fn_p05_kN"].append(q05)
-            r["per_kind"][name]["fn_p95_kN"].append(q95)
-            r["per_kind"][name]["broken"].append(int(broken[sel].sum()))
-        r["adr_iterations"] = self.solver.totalIterations
-        r["wall_s"] = time.time() - self.t0
-        if self.test.vtk_every and self.solver.step % self.test.vtk_every == 0:
-            export_vtk(self.out, self.a)
-        write_json(self.out, r)  # a run that stops later keeps what it had
+def scale_kinds(kinds, beta, kind_params):
+    """parameters='macro': micro q_i = beta q_i and E_c = E / beta (the law is linear in the compliance);
+    values given in kind_params are contact values and stay as given."""
+    for name, k in kinds.items():
+        given = kind_params.get(name, {})
+        if name == "AGG":
+            if "young" not in given:
+                k.young = k.young / beta
+            continue
+        for q in ("q1", "q2", "q3", "q4"):
+            if q not in given:
+                setattr(k, q, beta * getattr(k, q))
 
 
-def write_json(out, res):
-    flat = dict(res)
-    for name, d in res["per_kind"].items():  # the contract's flat keys as well
-        for key, v in d.items():
-            flat[f"{key}_{name}"] = v
-    with open(os.path.join(out, "results.json.tmp"), "w") as f:
-        json.dump(flat, f, indent=1, default=float)
-    os.replace(os.path.join(out, "results.json.tmp"), os.path.join(out, "results.json"))
-
-
-def export_vtk(out, assembly):
-    """Particles and contacts through YADE's own exporter (ParaView opens the .vtu/.vtk files)."""
-    yade, _ = _yade()
-    from yade import export
-    os.makedirs(os.path.join(out, "vtk"), exist_ok=True)
-    vtk = export.VTKExporter(os.path.join(out, "vtk", "swelling"))
-    vtk.exportSpheres(what=dict(aggregateId="b.material.aggregateId", displacement="b.state.displ()"))
-    vtk.exportInteractions(what=dict(kind="i.phys.kindId", fn="i.phys.Fn", broken="float(i.phys.broken)"))
+def set_swelling(test, kinds, d_inf):
+    """swellDispInf = d_inf [m] of the kinds whose every contact swells (unless kind_params sets it)."""
+    for name in paper.SCENARIOS[test.scenario]["swelling_kinds"]:
+        if "swellDispInf" not in test.kind_params.get(name, {}):
+            kinds[name].swellDispInf = d_inf
 
 
 def run(test):
-    """Runs one swelling test inside YADE; writes results.json, tables, plots and VTK into test.out."""
+    """Runs one swelling test inside YADE; writes results.json, tables, plots and VTK into test.out.
+    Order: Python checks, the plugin objects (kinds, solver: their constructors validate), then the
+    mesostructure, the (macro) calibration, the scene and the run."""
     test.validate()
-    yade, W = _yade()
+    dem = _dem()
     from . import meso, report
+    from .dem import recorder
+    from .dem import scene as dem_scene
     t0 = time.time()
+    kinds = make_kinds(test)
+    solver = dem.make_solver(test.solver, tStart=test.t_start_days, tEnd=test.t_end, stepsPerDecade=test.steps_per_decade,
+                             tolerance=test.tolerance, label="swelldemSolver")
     os.makedirs(test.out, exist_ok=True)
     overrides = {} if test.aggregate_area_fraction < 0 else {"aggregate_area_fraction": test.aggregate_area_fraction}
     assembly = meso.generate(seed=test.seed, width_mm=test.size_mm[0], height_mm=test.size_mm[1], **overrides)
     assembly.save(os.path.join(test.out, "assembly.npz"))
-    cal = calibrate_modulus_factor(shear_ratio=test.shear_ratio)
+    if test.parameters == "macro":
+        cal = calibrate_modulus_factor(shear_ratio=test.shear_ratio)
+        scale_kinds(kinds, cal["beta"], test.kind_params)
+        # the specimen's moduli the contact values imply: beta x E_c (E_c = 1/J(28.01, 28) for mortar and ITZ)
+        cal["macro_young_28d_Pa"] = {name: cal["beta"] / kinds[name].compliance(28.01, 28.0) for name in ("MORTAR", "ITZ")}
+        cal["macro_young_28d_Pa"]["AGG"] = cal["beta"] * kinds["AGG"].young
+    else:
+        cal = {"run": False, "why": "parameters = paper-micro: the paper's values are contact values, beta is not needed"}
     r_mean = float(assembly.r.mean())
     d_inf = test.eps_inf * 2 * r_mean  # the paper's micro-macro rule (Table 3.2)
-    scale = cal["beta"] if test.parameters == "macro" else 1.0
-    kinds = make_kinds(test, scale, d_inf)
-    cal["macro_young_28d_Pa"] = {name: cal["beta"] / (scale * kinds[name].compliance(28.01, 28.0)) for name in ("MORTAR", "ITZ")}
-    cal["macro_young_28d_Pa"]["AGG"] = cal["beta"] * kinds["AGG"].young
-    solver = W.AdrLogTimeIntegrator(tStart=test.t_start_days, tEnd=test.t_end, stepsPerDecade=test.steps_per_decade,
-                                    tolerance=test.tolerance, label="swelldemSolver")
-    ys = meso.to_yade(assembly, kinds, solver)
+    set_swelling(test, kinds, d_inf)
+    ys = dem.to_yade(assembly, kinds, solver)
     gel = []
     if test.scenario == "asr-coarse":
-        gel = meso.set_gel_pockets(ys, assembly, test.gel_fraction, d_inf, test.seed)
-    counts = {name: int((assembly.kind == k).sum()) for k, name in enumerate(KIND_NAMES)}
-    res = {"scenario": test.scenario, "behaviour": test.behaviour, "damage": test.damage, "config": asdict(test),
+        gel = dem.set_gel_pockets(ys, assembly, test.gel_fraction, d_inf, test.seed)
+    counts = {name: int((assembly.kind == k).sum()) for k, name in enumerate(paper.KIND_NAMES)}
+    res = {"scenario": test.scenario, "behaviour": test.behaviour, "damage": test.damage, "solver": test.solver, "config": asdict(test),
            "calibration": cal, "d_inf_m": d_inf, "r_mean_m": r_mean, "n_particles": int(len(assembly.x)),
            "n_contacts_by_kind": counts, "n_gel_pockets": int(len(gel)), "times_days": [], "swelling_strain_x": [],
            "swelling_strain_y": [], "unbalanced_ratio": [], "adr_iterations_per_step": [], "step_at_round_off": [], "adr_iterations": 0,
-           "per_kind": {n: {"fn_p05_kN": [], "fn_p95_kN": [], "broken": []} for n in KIND_NAMES},
+           "per_kind": {n: {"fn_p05_kN": [], "fn_p95_kN": [], "broken": []} for n in paper.KIND_NAMES},
            "status": "running", "wall_s": 0.0}
-    rec = _Recorder(test, assembly, ys, solver, res, test.out)
+    rec = recorder.StepRecorder(assembly, ys, solver, res, test.out, vtk_every=test.vtk_every)
     solver.stepHook = rec
     try:
-        from .scene import run_to_end
-        run_to_end(solver)
+        dem_scene.run_to_end(solver)  # through the module, so that a benchmark can time it
         res["status"] = "finished"
     except Exception as e:  # noqa: BLE001 - the message goes into the results, then up
         res["status"] = f"failed: {e}"
-        write_json(test.out, res)
+        report.write_results(test.out, res)
         raise
     finally:
         res["wall_s"] = time.time() - t0
-    export_vtk(test.out, assembly)
-    write_json(test.out, res)
-    report.write_all(test.out, res, assembly, rec.contact_arrays, yade.Omega())
+    recorder.export_vtk(test.out)
+    report.write_results(test.out, res)
+    report.write_all(test.out, res, assembly, recorder.broken_contacts())
     return res

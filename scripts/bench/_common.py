@@ -36,7 +36,8 @@ def make_assembly(n_discs, seed=1, aggregate_fraction=0.35):
 
 def build_scene(a, law, kinds=None, integrator=None, extra_engines=(), radius_scale=1.0, fix_bottom=True,
                 shear_ratio=0.3, young_by_kind=None, swell_mask=None):
-    """Puts assembly `a` into the current YADE scene (after O.reset()) with explicit bonded contacts.
+    """Puts assembly `a` into the current YADE scene through swelldem.dem.build_scene (O.reset()
+    first, O.tags kept) with explicit bonded contacts.
 
     law: 'swell' (ConcreteMat, Ip2_ConcreteMat_ConcreteMat_SwellPhys with `kinds` = dict MORTAR/ITZ/AGG ->
     ContactKind, Law2_ScGeom_SwellPhys_AgingSwelling) or 'stock' (FrictMat, Ip2_FrictMat_FrictMat_FrictPhys,
@@ -48,41 +49,30 @@ def build_scene(a, law, kinds=None, integrator=None, extra_engines=(), radius_sc
     swell_mask: per-contact booleans; where False the contact gets SwellPhys.swellDispInf = 0.
     Returns (ids of the bodies, list of the interactions in assembly order)."""
     import yade
-    from yade import utils
-    from swelldem import scene
+    from swelldem import dem
     W = yade.wrapper
-    O = yade.Omega()
-    O.reset()
-    r = a.r * radius_scale
     if law == "swell":
-        mats = {-1: W.ConcreteMat(young=30e9, poisson=0.2, density=2400, aggregateId=-1, label="mortar")}
-        for g in sorted(set(int(v) for v in a.aggregate_id) - {-1}):
-            mats[g] = W.ConcreteMat(young=60e9, poisson=0.2, density=2600, aggregateId=g)
-        for m in mats.values():
-            O.materials.append(m)
+        groups = sorted(set(int(v) for v in a.aggregate_id) - {-1})
+        mats = [W.ConcreteMat(young=30e9, poisson=0.2, density=2400, aggregateId=-1, label="mortar")]
+        mats += [W.ConcreteMat(young=60e9, poisson=0.2, density=2600, aggregateId=g) for g in groups]
+        index = {g: k + 1 for k, g in enumerate(groups)}
+        material_of = [index.get(int(g), 0) for g in a.aggregate_id]
         ip2 = W.Ip2_ConcreteMat_ConcreteMat_SwellPhys(mortar=kinds["MORTAR"], itz=kinds["ITZ"], agg=kinds["AGG"])
         law2 = W.Law2_ScGeom_SwellPhys_AgingSwelling()
     elif law == "stock":
-        m = W.FrictMat(young=30e9, poisson=0.2, density=2400, frictionAngle=math.pi / 2 - 1e-9)
-        O.materials.append(m)
-        mats = {g: m for g in set(int(v) for v in a.aggregate_id)}
+        mats, material_of = [W.FrictMat(young=30e9, poisson=0.2, density=2400, frictionAngle=math.pi / 2 - 1e-9)], None
         ip2 = W.Ip2_FrictMat_FrictMat_FrictPhys()
         law2 = W.Law2_ScGeom_FrictPhys_CundallStrack(neverErase=True)
     else:
         raise ValueError(f"build_scene: law = {law!r} is out of range; allowed: 'swell', 'stock'")
     ybottom = float(min(a.y - a.r))
-    ids = []
-    for k in range(len(a.r)):
-        fixed = fix_bottom and (a.y[k] - a.r[k]) <= ybottom + 1e-3 * a.r[k]
-        ids.append(O.bodies.append(scene.disc((float(a.x[k]), float(a.y[k])), float(r[k]), mats[int(a.aggregate_id[k])], fixed=fixed)))
+    fixed = [k for k in range(len(a.r)) if fix_bottom and (a.y[k] - a.r[k]) <= ybottom + 1e-3 * a.r[k]]
     # Detection factor wide enough for the assembly's near-contacts (gap <= 0.05 Rmax).
     gap = max(0.0, float((a.gap_m / (a.r[a.contacts[:, 0]] + a.r[a.contacts[:, 1]])).max()))
     ig2 = W.Ig2_Sphere_Sphere_ScGeom(interactionDetectionFactor=1.0 + 2 * gap + 1e-6)
-    O.engines = [W.ForceResetter(), W.InteractionLoop([ig2], [ip2], [law2], label="iloop")] + list(extra_engines) + \
-        ([integrator] if integrator is not None else [])
-    inters = []
-    for c, (i, j) in enumerate(a.contacts):
-        I = utils.createInteraction(ids[int(i)], ids[int(j)])
+    ids, inters = dem.build_scene(a.x, a.y, a.r * radius_scale, mats, ip2, law2, integrator, material_of=material_of,
+                                  contacts=a.contacts, fixed=fixed, ig2=ig2, collider=False, extra_engines=extra_engines)
+    for c, I in enumerate(inters):
         if law == "swell":
             I.phys.area = float(a.facet_area_m2[c])
             if swell_mask is not None and not swell_mask[c]:
@@ -91,8 +81,7 @@ def build_scene(a, law, kinds=None, integrator=None, extra_engines=(), radius_sc
             L = float(a.distance_m[c])
             kn = young_by_kind[int(a.kind[c])] * float(a.facet_area_m2[c]) / L
             I.phys.kn, I.phys.ks = kn, shear_ratio * kn
-        inters.append(I)
-    return ids, inters
+    return ids.tolist(), inters
 
 
 def positions(ids):

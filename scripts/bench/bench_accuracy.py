@@ -74,12 +74,13 @@ def configs(sweeps):
 
 # ------------------------------------------------------------------------------------------ worker
 def worker(a):
-    from swelldem import scenario, scene
+    from swelldem import scenario
+    from swelldem.dem import scene
     c = json.loads(a.config)
     timing = {}
     plain = scene.run_to_end
 
-    def timed(solver, chunk=2000):  # times the scenario's own solve, not the modulus calibration
+    def timed(solver, chunk=2000):  # times the scenario's own solve, not a (macro) modulus calibration
         t0 = time.time()
         plain(solver, chunk)
         if solver.label == "swelldemSolver":

@@ -66,7 +66,7 @@ import random  # noqa: E402
 
 import yade  # noqa: E402
 from yade import utils  # noqa: E402
-from swelldem import scene  # noqa: E402
+from swelldem import dem  # noqa: E402
 
 W = yade.wrapper
 O = yade.Omega()
@@ -86,7 +86,7 @@ YOUNG = {"MORTAR": 25e9, "ITZ": 15e9, "AGG": 60e9}
 
 def kinds():
     # Every kind carries d_inf; the per-contact mask (SwellPhys.swellDispInf = 0) decides who swells.
-    return {name: scene.contact_kind(name, behaviour="elastic", young=E, shear_ratio=0.3, swell_disp_inf=C.D_INF_PAPER_M,
+    return {name: dem.contact_kind(name, behaviour="elastic", young=E, shear_ratio=0.3, swell_disp_inf=C.D_INF_PAPER_M,
                                      kinetics="isr") for name, E in YOUNG.items()}
 
 

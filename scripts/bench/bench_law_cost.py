@@ -58,12 +58,12 @@ args = ap.parse_args(sys.argv[1:])
 
 # ------------------------------------------------------------------------------------------ worker
 def kinds_for(variant):
-    from swelldem import scene
+    from swelldem import dem
     beh = "viscoelastic" if variant in ("viscoelastic", "all", "viscoelastic+swelling") else \
         ("aging-elastic" if variant == "aging-elastic" else "elastic")
     swell = C.D_INF_PAPER_M if variant in ("swelling", "all", "viscoelastic+swelling") else 0.0
     dmg = variant in ("damage", "all")
-    return {name: scene.contact_kind(name, behaviour=beh, young=E, shear_ratio=0.3, swell_disp_inf=swell, kinetics="isr", damage=dmg,
+    return {name: dem.contact_kind(name, behaviour=beh, young=E, shear_ratio=0.3, swell_disp_inf=swell, kinetics="isr", damage=dmg,
                                      tensile_strength=4e6) for name, E in YOUNG.items()}
 
 

@@ -47,8 +47,7 @@ def vm(field="VmHWM"):
 # ------------------------------------------------------------------------------------------ worker
 def worker(a):
     import yade
-    from swelldem import meso, scenario
-    W = yade.wrapper
+    from swelldem import dem, meso, scenario
     O = yade.Omega()
     out = {"size_mm": a.size_mm, "threads": O.numThreads, "damage": not a.no_damage, "load_start": os.getloadavg()}
     t0 = time.time()
@@ -57,12 +56,12 @@ def worker(a):
     assembly = meso.generate(seed=test.seed, width_mm=a.size_mm, height_mm=a.size_mm)
     out["generate_s"] = time.time() - t0
     out["mem_after_generate_MB"] = vm()
-    d_inf = test.eps_inf * 2 * float(assembly.r.mean())
-    kinds = scenario.make_kinds(test, 1.0, d_inf)
-    solver = W.AdrLogTimeIntegrator(tStart=test.t_start_days, tEnd=test.t_end, stepsPerDecade=test.steps_per_decade,
-                                    tolerance=test.tolerance, label="swelldemSolver", verbose=False)
+    kinds = scenario.make_kinds(test)
+    scenario.set_swelling(test, kinds, test.eps_inf * 2 * float(assembly.r.mean()))
+    solver = dem.make_solver(test.solver, tStart=test.t_start_days, tEnd=test.t_end, stepsPerDecade=test.steps_per_decade,
+                             tolerance=test.tolerance, label="swelldemSolver", verbose=False)
     t1 = time.time()
-    meso.to_yade(assembly, kinds, solver)
+    dem.to_yade(assembly, kinds, solver)
     out["build_s"] = time.time() - t1
     out["mem_after_build_MB"] = vm()
     out["n_particles"] = len(O.bodies)

@@ -14,13 +14,19 @@ times smaller than what a 1 % stiffness or strength mismatch would give. The fir
 threshold crossing of the same force on the same contact: the same contacts break in the same
 recording interval (10 steps).
 """
+import os
+
 import pytest
+
+from conftest import REPO
+
+# The study module lives beside its script (scripts/cohesive/), not in the library.
+STUDY = f"import sys\nsys.path.insert(0, {os.path.join(REPO, 'scripts', 'cohesive')!r})\nimport cohesive_laws as cc\n"
 
 TOL = {"jcfpm": 1e-6, "cohfrict": 1e-4}
 
-SCRIPT = r"""
-import sys
-from swelldem import meso, cohesive_compare as cc
+SCRIPT = STUDY + r"""
+from swelldem import meso
 a = meso.generate(seed=3, width_mm=12, height_mm=12, aggregate_area_fraction=0.2, wall_gap_mm=0.3)
 moduli = cc.contact_moduli(0.38)
 out = {'kinds': [int((a.kind == k).sum()) for k in range(3)]}
@@ -61,8 +67,8 @@ def test_same_first_break(runs, law):
     assert ours["stress"] > 0 and runs["swelldem"]["status"] == "post_peak"
 
 
-CPM_SCRIPT = r"""
-from swelldem import meso, cohesive_compare as cc
+CPM_SCRIPT = STUDY + r"""
+from swelldem import meso
 a = meso.generate(seed=3, width_mm=12, height_mm=12, aggregate_area_fraction=0.2, wall_gap_mm=0.3)
 moduli = cc.contact_moduli(0.38)
 ref = cc.run_uniaxial('swelldem', a, cc.build('swelldem', a, moduli), 'tension', deps_per_step=2e-8)
@@ -90,9 +96,9 @@ def test_cpm_calibrated_to_our_modulus_and_peak(tmp_path):
     assert 0 < cpm["first_damage_strain"] < cpm["strain_at_peak"]  # Cpm damages gradually before its peak
 
 
-SWELL_SCRIPT = r"""
+SWELL_SCRIPT = STUDY + r"""
 import numpy as np
-from swelldem import meso, cohesive_compare as cc
+from swelldem import meso
 a = meso.generate(seed=3, width_mm=12, height_mm=12, aggregate_area_fraction=0.2, wall_gap_mm=0.3)
 moduli = cc.contact_moduli(0.38)
 out = {}
@@ -127,8 +133,8 @@ def test_free_swelling_same_as_radius_growth(tmp_path):
         assert np.max(np.abs(np.array(r["fn_N"]) - f0)) < 1e-3 * np.max(np.abs(f0)), law
 
 
-DAMAGE_SWELL_SCRIPT = r"""
-from swelldem import meso, cohesive_compare as cc
+DAMAGE_SWELL_SCRIPT = STUDY + r"""
+from swelldem import meso
 a = meso.generate(seed=3, width_mm=12, height_mm=12, aggregate_area_fraction=0.2, wall_gap_mm=0.3)
 moduli = cc.contact_moduli(0.38)
 out = {'swelldem': cc.free_swelling('swelldem', a, moduli, damage=True, tolerance=1e-4)['broken_end']}

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
-"""An Assembly in real YADE with the real plugin (swelldem.meso.to_yade), the macroscopic strain
+"""An Assembly in real YADE with the real plugin (swelldem.dem.to_yade), the macroscopic strain
 measure (swelldem.measure) on synthetic fields, and a small run of the paper's Table 3.2 check
 (scripts/table_3_2.py). About 20 s on 2 cores."""
 import json
@@ -98,25 +98,43 @@ def test_measure_errors():
 # ------------------------------------------------------------------ to_yade in real YADE
 
 def test_to_yade_outside_yade_is_a_clear_error():
+    from swelldem import dem
     a = meso.generate(seed=1, width_mm=6, height_mm=6, aggregate_area_fraction=0)
-    with pytest.raises(meso.YadeUnavailableError, match="yade-swelldem"):
-        meso.to_yade(a, {}, None)
+    with pytest.raises(dem.YadeUnavailableError, match="yade-swelldem"):
+        dem.to_yade(a, {}, None)
+
+
+def test_geometry_package_imports_no_yade_code():
+    """swelldem.meso (and the vocabulary, swelldem.paper) run in plain Python: importing them and
+    generating an assembly loads no YADE module, so the geometry stays usable without YADE."""
+    code = ("import sys\n"
+            "from swelldem import meso, paper\n"
+            "a = meso.generate(seed=1, width_mm=6, height_mm=6, aggregate_area_fraction=0)\n"
+            "bad = sorted(m for m in sys.modules if m == 'yade' or m.startswith('yade.') or m.startswith('swelldem.dem'))\n"
+            "print('LOADED', bad, a.n_particles)\n")
+    env = dict(os.environ, PYTHONPATH=os.path.join(REPO, "py"), SWELLDEM_BUILD_DIR=build_dir())
+    p = subprocess.run(["/usr/bin/python3", "-c", code], capture_output=True, text=True, timeout=120, env=env)
+    assert p.returncode == 0, p.stderr[-2000:]
+    line = [ln for ln in p.stdout.splitlines() if ln.startswith("LOADED")][0]
+    assert line.startswith("LOADED [] ") and int(line.split()[-1]) > 10, line
 
 
 SCENE_SCRIPT = r"""
 import sys, numpy as np, yade
 from yade import wrapper as W
-from swelldem import meso, scene
+from swelldem import dem, meso
 O = yade.Omega()
 a = meso.generate(seed=2, width_mm=20, height_mm=20)          # concrete: aggregates, MORTAR/ITZ/AGG contacts
-kinds = {"MORTAR": scene.contact_kind("MORTAR", swell_disp_inf=0.8e-6),
-         "ITZ": scene.contact_kind("ITZ", b3="itz", swell_disp_inf=0.8e-6),
-         "AGG": scene.contact_kind("AGG", young=60e9, swelling=True)}
+kinds = {"MORTAR": dem.contact_kind("MORTAR", swell_disp_inf=0.8e-6),
+         "ITZ": dem.contact_kind("ITZ", b3="itz", swell_disp_inf=0.8e-6),
+         "AGG": dem.contact_kind("AGG", young=60e9, swelling=True)}
 solver = W.AdrLogTimeIntegrator(tStart=1, tEnd=10, stepsPerDecade=2, tolerance=1e-4, verbose=False)
-ys = meso.to_yade(a, kinds, solver)
+O.tags["description"], O.tags["params"] = "batch job 7", "seed=2"   # as yade-batch sets them
+tags_before = dict(O.tags)
+ys = dem.to_yade(a, kinds, solver)
 out = {"n_bodies": len(O.bodies), "n_real": sum(1 for i in O.interactions if i.isReal), "counts": ys.counts,
        "cohesive_after": ys.ip2.cohesive, "n_materials": len(O.materials), "n_aggregates": a.n_aggregates,
-       "n_contacts": a.n_contacts}
+       "n_contacts": a.n_contacts, "tags_before": tags_before, "tags_after": dict(O.tags)}
 out["body_agg_id"] = [O.bodies[i].material.aggregateId for i in range(a.n_particles)]
 out["body_r"] = [O.bodies[i].shape.radius for i in range(a.n_particles)]
 out["body_xy"] = [[O.bodies[i].state.pos[0], O.bodies[i].state.pos[1], O.bodies[i].state.pos[2]] for i in range(a.n_particles)]
@@ -129,7 +147,7 @@ out["area"] = [p.area for p in ph]
 out["length"] = [p.length for p in ph]
 out["swell"] = [p.swellDispInf for p in ph]
 # gel pockets: 10 % of the AGG contacts, seeded
-chosen = meso.set_gel_pockets(ys, a, 0.1, 0.794e-6, seed=7)
+chosen = dem.set_gel_pockets(ys, a, 0.1, 0.794e-6, seed=7)
 out["chosen"] = chosen.tolist()
 out["chosen_again"] = meso.choose_contacts(a, "AGG", 0.1, seed=7).tolist()
 out["swell_after"] = [ys.interaction(c).phys.swellDispInf for c in range(a.n_contacts)]
@@ -144,14 +162,14 @@ def expect(name, fn):
         fn(); errs[name] = None
     except Exception as e:
         errs[name] = type(e).__name__ + ": " + str(e)
-expect("missing_itz", lambda: meso.to_yade(a, {"MORTAR": kinds["MORTAR"], "AGG": kinds["AGG"]}, solver))
-expect("bad_kind_id", lambda: meso.to_yade(a, {**kinds, "ITZ": scene.contact_kind("MORTAR")}, solver))
+expect("missing_itz", lambda: dem.to_yade(a, {"MORTAR": kinds["MORTAR"], "AGG": kinds["AGG"]}, solver))
+expect("bad_kind_id", lambda: dem.to_yade(a, {**kinds, "ITZ": dem.contact_kind("MORTAR")}, solver))
 b = meso.generate(seed=2, width_mm=20, height_mm=20)
 c0 = int(np.nonzero(b.kind == meso.MORTAR)[0][0]); b.kind[c0] = meso.AGG
-expect("kind_mismatch", lambda: meso.to_yade(b, kinds, solver))
-k2 = dict(kinds); k2["AGG"] = scene.contact_kind("AGG")        # swelling off
-ys2 = meso.to_yade(a, k2, W.AdrLogTimeIntegrator(tStart=1, tEnd=10))
-expect("gel_on_non_swelling", lambda: meso.set_gel_pockets(ys2, a, 0.1, 1e-6, seed=1))
+expect("kind_mismatch", lambda: dem.to_yade(b, kinds, solver))
+k2 = dict(kinds); k2["AGG"] = dem.contact_kind("AGG")        # swelling off
+ys2 = dem.to_yade(a, k2, W.AdrLogTimeIntegrator(tStart=1, tEnd=10))
+expect("gel_on_non_swelling", lambda: dem.set_gel_pockets(ys2, a, 0.1, 1e-6, seed=1))
 out["errors"] = errs
 dump(out)
 """
@@ -174,6 +192,13 @@ def test_one_body_per_particle_at_the_assembly_positions(concrete_scene):
     np.testing.assert_array_equal(xyz[:, 1], a.y)
     assert np.all(xyz[:, 2] == 0)
     assert res["blocked"] == ["zXY"]
+
+
+def test_scene_builder_keeps_the_batch_tags(concrete_scene):
+    """The scene builder resets O but keeps O.tags: a yade-batch job's id, description and params."""
+    res = concrete_scene[0]
+    assert res["tags_after"]["description"] == "batch job 7" and res["tags_after"]["params"] == "seed=2"
+    assert res["tags_after"] == res["tags_before"]
 
 
 def test_one_material_per_aggregate(concrete_scene):
@@ -225,10 +250,10 @@ def test_to_yade_errors(concrete_scene):
 def test_without_the_plugin_is_a_clear_error(tmp_path):
     """Plain Debian yade (no overlay prefix): the plugin classes are missing."""
     script = tmp_path / "s.py"
-    script.write_text("from swelldem import meso\n"
+    script.write_text("from swelldem import dem, meso\n"
                       "a = meso.generate(seed=1, width_mm=6, height_mm=6, aggregate_area_fraction=0)\n"
-                      "try:\n    meso.to_yade(a, {}, None)\n"
-                      "except meso.YadeUnavailableError as e:\n    print('CLEAR ERROR:', e)\n")
+                      "try:\n    dem.to_yade(a, {}, None)\n"
+                      "except dem.YadeUnavailableError as e:\n    print('CLEAR ERROR:', e)\n")
     env = {k: v for k, v in os.environ.items() if k != "YADE_PREFIX"}
     env.update(PYTHONPATH=os.path.join(REPO, "py"), SWELLDEM_BUILD_DIR=build_dir())
     p = subprocess.run(["/usr/bin/yade", "-n", "-x", str(script)], cwd=tmp_path, capture_output=True, text=True, timeout=120, env=env)

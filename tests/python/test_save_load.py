@@ -9,19 +9,20 @@ from conftest import plugin_classes
 SCRIPT = r"""
 import sys
 sys.path.insert(0, sys.argv[2])
-from swelldem import scene
+from swelldem import dem
 fname = sys.argv[1]
 
 def build():
     O.reset()
     mat = ConcreteMat(young=30e9, poisson=0.2, density=2400, aggregateId=-1, label='mortar')
     O.materials.append(mat)
-    kind = scene.contact_kind('MORTAR', behaviour='viscoelastic', swell_disp_inf=1e-4, kinetics='isr', damage=True,
+    kind = dem.contact_kind('MORTAR', behaviour='viscoelastic', swell_disp_inf=1e-4, kinetics='isr', damage=True,
                               tensile_strength=5e6, shear_ratio=0.25)
-    O.bodies.append([scene.disc((0, 0), 0.5, mat, fixed=True), scene.disc((1.0, 0.02), 0.5, mat), scene.disc((0.05, 1.0), 0.5, mat)])
+    O.bodies.append([dem.disc((0, 0), 0.5, mat, fixed=True), dem.disc((1.0, 0.02), 0.5, mat), dem.disc((0.05, 1.0), 0.5, mat)])
     solver = AdrLogTimeIntegrator(tStart=1.0, tEnd=100.0, stepsPerDecade=5, tolerance=1e-7, label='solver', verbose=False)
-    O.engines = scene.engines(Ip2_ConcreteMat_ConcreteMat_SwellPhys(mortar=kind, itz=kind, agg=kind, thickness=0.5), solver)[:-1] \
-        + [SwelldemAbiProbe(label='probe'), solver]
+    O.engines = dem.engines(Ip2_ConcreteMat_ConcreteMat_SwellPhys(mortar=kind, itz=kind, agg=kind, thickness=0.5),
+                            Law2_ScGeom_SwellPhys_AgingSwelling(), solver, detection_factor=1.05,
+                            extra_engines=[SwelldemAbiProbe(label='probe')])
 
 def value(v):
     if hasattr(v, 'dict') and callable(v.dict): return type(v).__name__ + ':' + str(sorted(v.dict().keys()))

@@ -49,6 +49,8 @@ def test_output_contract(isr_runs):
     assert any("spheres" in v for v in vtk) and any("intrs" in v for v in vtk)
     assert "swelldem: step 1/" in proc.stdout and "left ~" in proc.stdout
     assert all(u <= 1e-4 * 1.0000001 or u == 0 for u in res["unbalanced_ratio"])
+    assert res["solver"] == "adr"
+    assert res["calibration"]["run"] is False  # paper-micro does not use beta: no second simulation
 
 
 def test_paper_findings_isr(isr_runs):
@@ -96,11 +98,57 @@ def test_asr_coarse_swells_only_gel_pockets(tmp_path):
     assert 0 < res["swelling_strain_x"][-1] < 0.3e-3
 
 
-@pytest.mark.parametrize("args,needle", [(("--steps-per-decade", "0"), "steps_per_decade = 0.0 is out of range; allowed: > 0"),
-                                         (("--tolerance", "2"), "tolerance = 2.0 is out of range"),
-                                         (("--t-end", "0.5"), "t_end_days = 0.5 is out of range")])
+def test_kind_param_changes_the_mortar_strength(isr_runs, tmp_path):
+    """--kind-param sets a ContactKind attribute of one kind: a mortar 4 times weaker in tension
+    than the paper's 4 MPa (everything else as the ve-dmg run) breaks more mortar contacts, and the
+    override is recorded in the run's configuration."""
+    ref = isr_runs["ve-dmg"][1]
+    res, _ = swelling_test(tmp_path / "weak", "--scenario", "isr", "--behaviour", "viscoelastic",
+                           "--kind-param", "MORTAR.tensileStrength=1e6")
+    assert res["config"]["kind_params"] == {"MORTAR": {"tensileStrength": 1e6}}
+    assert res["broken_MORTAR"][-1] > ref["broken_MORTAR"][-1] + 5, (res["broken_MORTAR"][-1], ref["broken_MORTAR"][-1])
+
+
+def test_macro_parameters_run_the_calibration(tmp_path):
+    """parameters = macro needs beta = E_macro / E_c: the calibration simulation runs (and only then)."""
+    res, _ = swelling_test(tmp_path / "macro", "--scenario", "isr", "--behaviour", "elastic", "--no-damage", "--parameters", "macro",
+                           "--t-end", "3", "--steps-per-decade", "1")
+    cal = res["calibration"]
+    assert cal["run"] is True and 0.2 < cal["beta"] < 1.0, cal
+    # the aggregate contacts' modulus is the macroscopic value divided by beta, so beta x E_c gives it back
+    assert cal["macro_young_28d_Pa"]["AGG"] == pytest.approx(60e9, rel=1e-12)
+
+
+@pytest.mark.parametrize("args,needle", [
+    (("--steps-per-decade", "0"), "stepsPerDecade = 0 is out of range; allowed:"),
+    (("--tolerance", "2"), "tolerance = 2 is out of range; allowed:"),
+    (("--t-end", "0.5"), "tEnd [day] = 0.5 is out of range; allowed:"),
+    (("--shear-ratio", "nan"), "= nan is out of range; allowed:"),
+    (("--kind-param", "MORTAR.tensileStrength=-1"), "tensileStrength f_t [Pa] = -1 is out of range; allowed:"),
+    (("--kind-param", "CEMENT.tensileStrength=1e6"), "swelldem: kind_params kind = 'CEMENT' is out of range; allowed: MORTAR, ITZ, AGG"),
+    (("--kind-param", "ITZ.tensileStrenght=1e6"), "attribute = 'tensileStrenght' is out of range; allowed:"),
+    (("--kind-param", "ITZ=1e6"), "kind_param = 'ITZ=1e6' is out of range; allowed: KIND.attribute=value"),
+    (("--size-mm", "12", "nan"), "size_mm = (12.0, nan) is out of range"),
+    (("--eps-inf=-1e-3",), "eps_inf = -0.001 is out of range"),
+])
 def test_bad_input_is_refused_before_work(tmp_path, args, needle):
+    """Refused with a message naming the parameter, its value and the allowed range, before the
+    mesostructure is generated (no assembly.npz) and before any result is written."""
     _, p = swelling_test(tmp_path / "bad", *args, check=False)
     assert p.returncode != 0
-    assert needle in p.stdout + p.stderr
+    assert needle in p.stdout + p.stderr, (p.stdout + p.stderr)[-2000:]
+    assert "Traceback" not in p.stderr
+    assert not (tmp_path / "bad" / "assembly.npz").exists()
     assert not (tmp_path / "bad" / "results.json").exists()
+
+
+def test_unavailable_solver_is_refused_before_work(tmp_path):
+    """--solver implicit needs the plugin's ImplicitLogTimeSolver: without it, a clear error before
+    any work; with it, the run must finish like the ADR's."""
+    res, p = swelling_test(tmp_path / "implicit", "--solver", "implicit", "--behaviour", "elastic", "--no-damage", check=False)
+    if p.returncode == 0:
+        res = json.loads((tmp_path / "implicit" / "results.json").read_text())
+        assert res["solver"] == "implicit" and res["status"] == "finished"
+    else:
+        assert "solver = 'implicit' is out of range; allowed: adr (this build of the plugin has no ImplicitLogTimeSolver)" in p.stderr
+        assert not (tmp_path / "implicit" / "assembly.npz").exists()

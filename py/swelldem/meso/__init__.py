@@ -11,20 +11,20 @@ Typical use::
     meso.plot_mesostructure(a, "mesostructure.png")
 
 The heavy geometry (disc packing, Laguerre facets with CGAL) is in the compiled
-library ``libswelldem_geom.so`` of the build folder (see :mod:`swelldem.paths`).
+library ``libswelldem_geom.so`` of the build folder (see :mod:`swelldem.paths`). The package is
+pure geometry (numpy and that library): it imports no YADE code, and runs in plain Python. Its
+YADE scene is made by :func:`swelldem.dem.to_yade`.
 """
 from .aggregates import AggregatePlacementError
 from .assembly import (AGG, AGGREGATE_MATERIAL, ITZ, KIND_NAMES, MATERIAL_NAMES, MORTAR,
                        MORTAR_MATERIAL, Assembly, load)
-from .generator import contact_kinds, generate, label_discs
+from .generator import choose_contacts, contact_kinds, generate, label_discs
 from .params import (DEFAULT_AGGREGATE_AREA_FRACTION, FULLER_SHARES, PAPER_FRACTIONS_MM,
                      MesoParameterError, MesoParameters)
 from .plot import plot_mesostructure
-from .yade_scene import (YadeScene, YadeUnavailableError, choose_contacts, set_contact_swelling,
-                         set_gel_pockets, to_yade)
 
 __all__ = ["AGG", "AGGREGATE_MATERIAL", "ITZ", "KIND_NAMES", "MATERIAL_NAMES", "MORTAR",
            "MORTAR_MATERIAL", "Assembly", "AggregatePlacementError", "DEFAULT_AGGREGATE_AREA_FRACTION",
            "FULLER_SHARES", "MesoParameterError", "MesoParameters", "PAPER_FRACTIONS_MM",
            "contact_kinds", "generate", "label_discs", "load", "plot_mesostructure",
-           "YadeScene", "YadeUnavailableError", "choose_contacts", "set_contact_swelling", "set_gel_pockets", "to_yade"]
+           "choose_contacts"]

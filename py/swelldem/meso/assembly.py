@@ -10,14 +10,14 @@ from typing import Dict, List
 
 import numpy as np
 
+# Contact kinds (mortar-mortar; aggregate-mortar or two different aggregates; same aggregate).
+from ..paper import AGG, ITZ, KIND_NAMES, MORTAR  # noqa: F401  (re-exported by swelldem.meso)
+
 #: Particle materials.
 MORTAR_MATERIAL = 0
 AGGREGATE_MATERIAL = 1
 MATERIAL_NAMES = ("MORTAR", "AGGREGATE")
 
-#: Contact kinds: mortar-mortar, aggregate-mortar or two different aggregates, same aggregate.
-MORTAR, ITZ, AGG = 0, 1, 2
-KIND_NAMES = ("MORTAR", "ITZ", "AGG")
 
 FORMAT = "swelldem.meso.assembly"
 FORMAT_VERSION = 1

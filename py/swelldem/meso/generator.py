@@ -185,3 +185,16 @@ def _max_overlap(x, y, r, rmax):
     i, j = pairs[:, 0], pairs[:, 1]
     ov = r[i] + r[j] - np.hypot(x[i] - x[j], y[i] - y[j])
     return max(0.0, float(ov.max()))
+
+
+def choose_contacts(assembly, kind, fraction, seed):
+    """A seeded random choice of round(fraction x count) contacts of one kind (indices, sorted).
+
+    kind: 0/1/2 or 'MORTAR'/'ITZ'/'AGG'; fraction in [0, 1]; seed: int (numpy SeedSequence).
+    """
+    if not 0.0 <= float(fraction) <= 1.0:
+        raise ValueError(f"swelldem.meso.choose_contacts: fraction = {fraction} is out of range; allowed: [0, 1]")
+    idx = assembly.contacts_of_kind(kind)
+    k = int(round(float(fraction) * len(idx)))
+    rng = np.random.default_rng(np.random.SeedSequence(int(seed)))
+    return np.sort(rng.choice(idx, size=k, replace=False)) if k else np.zeros(0, dtype=np.int64)

@@ -17,24 +17,27 @@ Laws (``LAWS``):
   ``epsCrackOnset`` are calibrated so that the specimen's macroscopic modulus and tensile peak
   equal those of the swelldem run (:func:`calibrate_cpm`).
 
-Loading (:func:`run_uniaxial`): discs whose left (right) edge lies within ``band`` of the
-left (right) side are held in x and moved apart (tension) or together (compression) at a
-constant strain increment per step; y and rotation free (one left disc held in y against
-drift), lateral faces free; NewtonIntegrator with local damping, dt from the contact stiffness
-(:func:`stable_dt`). Stress = mean band reaction / (H b); strain = band displacement / W.
+Loading (:func:`run_uniaxial`): the library's virtual uniaxial test (swelldem.dem.uniaxial),
+displacement-controlled between two bands of discs, NewtonIntegrator with local damping.
 
-Run inside YADE with the plugin (scripts/yade-swelldem); scripts/compare_cohesive_laws.py is the
-command-line face and docs/cohesive-laws.md reports the runs.
+A study module beside its command-line face, compare_cohesive_laws.py (run inside YADE with the
+plugin, scripts/yade-swelldem); docs/cohesive-laws.md reports the runs.
 """
 import math
+import os
+import sys
 import time
 
 import numpy as np
 
-KIND_NAMES = ("MORTAR", "ITZ", "AGG")
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "py"))
+from swelldem import dem, measure, meso  # noqa: E402
+from swelldem.dem import uniaxial  # noqa: E402
+from swelldem.dem.uniaxial import count_per_kind, fit_modulus, stable_dt  # noqa: E402
+from swelldem.paper import AGGREGATE_YOUNG, KIND_NAMES, TENSILE_STRENGTH, larive_xi  # noqa: E402
+from swelldem.plugin import require  # noqa: E402
+
 LAWS = ("swelldem", "cohfrict", "jcfpm", "cpm")
-#: Paper Table 3.5 tensile strengths [Pa].
-TENSILE_STRENGTH = {"MORTAR": 4e6, "ITZ": 2e6, "AGG": 6e6}
 #: Age [day] at which the macroscopic moduli of mortar and ITZ are taken (E = 1/J(t + 0.01, t)).
 AGE_DAYS = 28.0
 SHEAR_RATIO = 0.3           # ks / kn, as scenario.SwellingTest
@@ -56,58 +59,35 @@ LAW_TITLES = {"swelldem": "swelldem (elastic-brittle)", "cohfrict": "CohFrictPhy
 
 
 def _yade():
-    from .plugin import require
-    return require("swelldem.cohesive_compare")
+    return require("cohesive_laws")
 
 
 def contact_moduli(beta):
     """Contact moduli E_c [Pa] per kind: macroscopic moduli over beta (as scenario.make_kinds):
-    mortar and ITZ E(AGE_DAYS) of the paper's B3 q's, aggregate scenario.AGGREGATE_YOUNG."""
-    from .scenario import AGGREGATE_YOUNG
-    from .scene import contact_kind
+    mortar and ITZ E(AGE_DAYS) of the paper's B3 q's, aggregate paper.AGGREGATE_YOUNG."""
     e = {}
     for name, b3 in (("MORTAR", "mortar"), ("ITZ", "itz")):
-        e[name] = contact_kind(name, behaviour="aging-elastic", b3=b3).modulus(AGE_DAYS) / beta
+        e[name] = dem.contact_kind(name, behaviour="aging-elastic", b3=b3).modulus(AGE_DAYS) / beta
     e["AGG"] = AGGREGATE_YOUNG / beta
     return e
 
 
 def swelldem_kinds(moduli, damage=True, strengths=None):
-    from .scene import contact_kind
     strengths = strengths or TENSILE_STRENGTH
-    return {name: contact_kind(name, behaviour="elastic", young=moduli[name], shear_ratio=SHEAR_RATIO, damage=damage,
+    return {name: dem.contact_kind(name, behaviour="elastic", young=moduli[name], shear_ratio=SHEAR_RATIO, damage=damage,
                                tensile_strength=strengths[name], residualFrictionAngle=FRICTION_ANGLE)
             for name in KIND_NAMES}
-
-
-def _discs(assembly, material_of):
-    yade, W = _yade()
-    from .scene import disc
-    O = yade.Omega()
-    bodies = [disc((float(assembly.x[i]), float(assembly.y[i])), float(assembly.r[i]), material_of(i)) for i in range(assembly.n_particles)]
-    ids = O.bodies.append(bodies)
-    if list(ids) != list(range(assembly.n_particles)):
-        raise RuntimeError("swelldem.cohesive_compare: body ids differ from particle indices")
-
-
-def _engines(ig2, ip2, law2, damping):
-    yade, W = _yade()
-    return [W.ForceResetter(),
-            W.InsertionSortCollider([W.Bo1_Sphere_Aabb(aabbEnlargeFactor=1.0)], verletDist=0, label="collider"),
-            W.InteractionLoop([ig2], [ip2], [law2], label="iloop"),
-            W.NewtonIntegrator(damping=damping, label="newton")]
 
 
 def build(law, assembly, moduli, damping=0.6, strengths=None, cpm=None, damage=True):
     """Fill O with the assembly under `law` (one of LAWS); returns a dict with the per-contact
     stiffnesses and strengths actually set (kn, ks, fmax arrays in assembly contact order)."""
     yade, W = _yade()
-    from . import meso
     O = yade.Omega()
     strengths = strengths or TENSILE_STRENGTH
     kinds = swelldem_kinds(moduli, damage=damage, strengths=strengths)
     # Ours first: it defines kn, ks (kn = E_c A / L from the Laguerre facet area A).
-    ys = meso.to_yade(assembly, kinds, W.NewtonIntegrator(damping=damping, label="newton"))
+    ys = dem.to_yade(assembly, kinds, W.NewtonIntegrator(damping=damping, label="newton"))
     contacts = ys.contacts
     # The law sets kn, ks at each contact's first iteration (facet area known by then): one step at
     # rest with a vanishing dt, then kn = E_c A / L is read back and checked.
@@ -118,23 +98,23 @@ def build(law, assembly, moduli, damping=0.6, strengths=None, cpm=None, damage=T
     e_c = np.array([moduli[KIND_NAMES[k]] for k in assembly.kind])
     kn_expected = e_c * assembly.facet_area_m2 / assembly.distance_m
     if np.max(np.abs(kn / kn_expected - 1)) > 1e-9 or np.max(np.abs(ks / (SHEAR_RATIO * kn) - 1)) > 1e-12:
-        raise RuntimeError("swelldem.cohesive_compare: the law's kn differs from E_c A / L")
+        raise RuntimeError("cohesive_laws: the law's kn differs from E_c A / L")
     ft = np.array([strengths[KIND_NAMES[k]] for k in assembly.kind])
     fmax = ft * assembly.facet_area_m2
     info = {"law": law, "kn": kn, "ks": ks, "fmax": fmax, "contacts": contacts}
     if law == "swelldem":
-        O.engines[2].label = "iloop"
         return info
-    O.reset()
+
+    def scene(mat, ig2, ip2, law2):  # the same discs, engines and bonded contacts under a stock law
+        return dem.build_scene(assembly.x, assembly.y, assembly.r, [mat], ip2, law2, W.NewtonIntegrator(damping=damping, label="newton"),
+                               contacts=contacts, ig2=ig2)[1]
+
     if law == "cohfrict":
         mat = W.CohFrictMat(young=30e9, poisson=SHEAR_RATIO, density=DENSITY, frictionAngle=FRICTION_ANGLE, isCohesive=True,
                             fragile=True, momentRotationLaw=False, normalCohesion=1.0, shearCohesion=1.0)
-        O.materials.append(mat)
-        _discs(assembly, lambda i: mat)
         ip2 = W.Ip2_CohFrictMat_CohFrictMat_CohFrictPhys(setCohesionOnNewContacts=True)
-        O.engines = _engines(W.Ig2_Sphere_Sphere_ScGeom6D(), ip2, W.Law2_ScGeom6D_CohFrictPhys_CohesionMoment(neverErase=True), damping)
-        for c, (i, j) in enumerate(contacts):
-            I = yade.utils.createInteraction(int(i), int(j))
+        inters = scene(mat, W.Ig2_Sphere_Sphere_ScGeom6D(), ip2, W.Law2_ScGeom6D_CohFrictPhys_CohesionMoment(neverErase=True))
+        for c, I in enumerate(inters):
             p = I.phys
             p.kn, p.ks = float(kn[c]), float(ks[c])
             p.normalAdhesion = float(fmax[c]) if damage else NEVER
@@ -143,20 +123,17 @@ def build(law, assembly, moduli, damping=0.6, strengths=None, cpm=None, damage=T
             p.unp = I.geom.penetrationDepth  # stress-free at the initial distance (gap included)
             p.momentRotationLaw = False
             if p.cohesionBroken:
-                raise RuntimeError("swelldem.cohesive_compare: CohFrictPhys contact created without cohesion")
+                raise RuntimeError("cohesive_laws: CohFrictPhys contact created without cohesion")
         ip2.setCohesionOnNewContacts = False  # contacts made later are cohesionless
     elif law == "jcfpm":
         mat = W.JCFpmMat(young=30e9, poisson=SHEAR_RATIO, density=DENSITY, frictionAngle=FRICTION_ANGLE,
                          tensileStrength=4e6, cohesion=4e6, residualFrictionAngle=FRICTION_ANGLE * 180 / math.pi)
-        O.materials.append(mat)
-        _discs(assembly, lambda i: mat)
-        ip2 = W.Ip2_JCFpmMat_JCFpmMat_JCFpmPhys(cohesiveTresholdIteration=1)
-        O.engines = _engines(W.Ig2_Sphere_Sphere_ScGeom(), ip2, W.Law2_ScGeom_JCFpmPhys_JointedCohesiveFrictionalPM(neverErase=True, label="jcfLaw"), damping)
-        for c, (i, j) in enumerate(contacts):
-            I = yade.utils.createInteraction(int(i), int(j))
+        inters = scene(mat, W.Ig2_Sphere_Sphere_ScGeom(), W.Ip2_JCFpmMat_JCFpmMat_JCFpmPhys(cohesiveTresholdIteration=1),
+                       W.Law2_ScGeom_JCFpmPhys_JointedCohesiveFrictionalPM(neverErase=True, label="jcfLaw"))
+        for c, I in enumerate(inters):
             p = I.phys
             if not p.isCohesive:
-                raise RuntimeError("swelldem.cohesive_compare: JCFpmPhys contact created without cohesion")
+                raise RuntimeError("cohesive_laws: JCFpmPhys contact created without cohesion")
             p.kn, p.ks = float(kn[c]), float(ks[c])
             p.FnMax = float(fmax[c]) if damage else NEVER
             p.FsMax = NEVER
@@ -168,15 +145,10 @@ def build(law, assembly, moduli, damping=0.6, strengths=None, cpm=None, damage=T
         mat = W.CpmMat(young=young, poisson=SHEAR_RATIO, density=DENSITY, frictionAngle=FRICTION_ANGLE,
                        sigmaT=cpm.get("sigmaT", CPM_SIGMA_T_RATIO * young * eco), epsCrackOnset=eco,
                        relDuctility=cpm.get("relDuctility", CPM_REL_DUCTILITY), neverDamage=not damage)
-        O.materials.append(mat)
-        _discs(assembly, lambda i: mat)
-        ip2 = W.Ip2_CpmMat_CpmMat_CpmPhys(cohesiveThresholdIter=10)
-        O.engines = _engines(W.Ig2_Sphere_Sphere_ScGeom(), ip2, W.Law2_ScGeom_CpmPhys_Cpm(), damping)
-        for i, j in contacts:
-            yade.utils.createInteraction(int(i), int(j))
+        scene(mat, W.Ig2_Sphere_Sphere_ScGeom(), W.Ip2_CpmMat_CpmMat_CpmPhys(cohesiveThresholdIter=10), W.Law2_ScGeom_CpmPhys_Cpm())
         # kn, ks are set by the law at the contact's first step
     else:
-        raise ValueError(f"swelldem.cohesive_compare: law = {law!r} is out of range; allowed: {', '.join(LAWS)}")
+        raise ValueError(f"cohesive_laws: law = {law!r} is out of range; allowed: {', '.join(LAWS)}")
     return info
 
 
@@ -192,13 +164,7 @@ def _is_broken(law, p):
 
 def broken_mask(law, contacts):
     """Per assembly contact: bond broken (an erased interaction counts as broken)."""
-    yade, _ = _yade()
-    O = yade.Omega()
-    out = np.zeros(len(contacts), dtype=bool)
-    for c, (i, j) in enumerate(contacts):
-        I = O.interactions[int(i), int(j)] if O.interactions.has(int(i), int(j)) else None
-        out[c] = True if I is None or not I.isReal else _is_broken(law, I.phys)
-    return out
+    return uniaxial.broken_contacts(contacts, lambda p: _is_broken(law, p))
 
 
 def damaged_count(law, contacts):
@@ -214,110 +180,18 @@ def damaged_count(law, contacts):
     return int(n)
 
 
-def stable_dt(safety=0.3):
-    """dt = safety x 2 min_i sqrt(m_i / K_i), K_i = sum over the body's contacts of kn + ks
-    (an upper bound of its translational stiffness; rotations are softer: I = 0.4 m r^2 against
-    ks r^2)."""
-    yade, _ = _yade()
-    O = yade.Omega()
-    K = np.zeros(len(O.bodies))
-    for I in O.interactions:
-        if not I.isReal:
-            continue
-        k = abs(I.phys.kn) + abs(I.phys.ks)
-        K[I.id1] += k
-        K[I.id2] += k
-    m = np.array([b.state.mass for b in O.bodies])
-    sel = K > 0
-    return float(safety * 2 * np.min(np.sqrt(m[sel] / K[sel])))
-
-
-def bands(assembly, band=None):
-    band = 1.5 * float(assembly.r.max()) if band is None else band
-    left = np.flatnonzero(assembly.x - assembly.r < band)
-    right = np.flatnonzero(assembly.x + assembly.r > assembly.width_m - band)
-    return left, right
-
-
 def run_uniaxial(law, assembly, info, mode="tension", deps_per_step=2e-8, chunk=50, max_strain=None, drop=0.5,
                  safety=0.3, min_strain=0.0):
-    """Strain-controlled uniaxial test of the scene in O (built by :func:`build`).
-
-    mode 'tension' or 'compression'; deps_per_step: strain increment per step [-]; every `chunk`
-    steps the stress, strain and broken contacts are recorded. Stops when the stress has fallen
-    below `drop` x peak after the peak, or at max_strain. Returns a result dict (SI)."""
-    yade, W = _yade()
+    """The library's uniaxial test (swelldem.dem.uniaxial.run_uniaxial) of the scene in O built by
+    :func:`build` under `law`, with that law's broken bonds (and Cpm's damage), plus per-law counts:
+    JCFpm's tensile and shear cracks, swelldem's failure modes of the broken contacts."""
+    yade, _ = _yade()
     O = yade.Omega()
-    t0 = time.time()
     contacts = info["contacts"]
-    sign = 1.0 if mode == "tension" else -1.0
-    if max_strain is None:
-        max_strain = 1e-3 if mode == "tension" else 5e-3
-    # one step at rest with a tiny dt: stock laws set some contact values at the first step (Cpm's kn)
-    O.dt = 1e-20
-    O.step()
-    dt = stable_dt(safety)
-    O.dt = dt
-    left, right = bands(assembly)
-    v = 0.5 * deps_per_step * assembly.width_m / dt
-    for i in left:
-        b = O.bodies[int(i)]
-        b.state.blockedDOFs = "xzXY"
-        b.state.vel = yade.Vector3(-sign * v, 0, 0)
-    hold = int(left[np.argmin(assembly.y[left])])
-    O.bodies[hold].state.blockedDOFs = "xyzXY"
-    for i in right:
-        b = O.bodies[int(i)]
-        b.state.blockedDOFs = "xzXY"
-        b.state.vel = yade.Vector3(sign * v, 0, 0)
-    x0l = np.array([O.bodies[int(i)].state.pos[0] for i in left])
-    x0r = np.array([O.bodies[int(i)].state.pos[0] for i in right])
-    area = assembly.height_m * assembly.thickness_m
-    kind = np.asarray(assembly.kind)
-    strain, stress, nbroken = [0.0], [0.0], [0]
-    peak, peak_at, peak_broken = 0.0, 0, np.zeros(len(contacts), dtype=bool)
-    first_break = None
-    first_damage = None  # Cpm: first contact with omega > 0 (the end of its elastic range)
-    steps = 0
-    status = "max_strain"
-    while True:
-        O.run(chunk, True)
-        steps += chunk
-        dl = np.mean([O.bodies[int(i)].state.pos[0] for i in left]) - x0l.mean()
-        dr = np.mean([O.bodies[int(i)].state.pos[0] for i in right]) - x0r.mean()
-        eps = sign * (dr - dl) / assembly.width_m
-        fr = -sum(O.forces.f(int(i))[0] for i in right)
-        fl = sum(O.forces.f(int(i))[0] for i in left)
-        sig = sign * 0.5 * (fr + fl) / area
-        br = broken_mask(law, contacts)
-        strain.append(eps)
-        stress.append(sig)
-        nbroken.append(int(br.sum()))
-        if law == "cpm" and first_damage is None and damaged_count(law, contacts) > 0:
-            first_damage = eps
-        if first_break is None and br.any():
-            first_break = {"strain": eps, "stress": sig, "contacts": np.flatnonzero(br).tolist(), "step": steps}
-        if sig > peak:
-            peak, peak_at, peak_broken = sig, len(stress) - 1, br
-        if eps > min_strain and peak > 0 and sig < drop * peak and len(stress) - 1 > peak_at:
-            status = "post_peak"
-            break
-        if eps >= max_strain:
-            break
-        if not np.isfinite(sig):
-            status = "diverged"
-            break
-    strain, stress = np.array(strain), np.array(stress)
-    eps_peak = float(strain[peak_at])
-    limit = first_damage if first_damage is not None else (first_break["strain"] if first_break else None)
-    modulus = fit_modulus(strain, stress, eps_peak, limit)
-    res = {"law": law, "mode": mode, "modulus_Pa": modulus, "peak_stress_Pa": float(peak), "strain_at_peak": eps_peak,
-           "broken_at_peak": _per_kind(peak_broken, kind), "broken_end": _per_kind(br, kind),
-           "damaged_end": damaged_count(law, contacts), "first_break": first_break, "first_damage_strain": first_damage,
-           "n_contacts": int(len(contacts)), "n_particles": int(assembly.n_particles), "dt_s": dt, "steps": steps,
-           "deps_per_step": deps_per_step, "status": status, "wall_s": time.time() - t0,
-           "strain": strain.tolist(), "stress_Pa": stress.tolist(), "n_broken": nbroken,
-           "broken_contacts_end": np.flatnonzero(br).tolist()}
+    res = uniaxial.run_uniaxial(assembly, contacts, mode, deps_per_step=deps_per_step, chunk=chunk, max_strain=max_strain,
+                                drop=drop, safety=safety, min_strain=min_strain, broken=lambda c: broken_mask(law, c),
+                                damaged=(lambda c: damaged_count(law, c)) if law == "cpm" else None)
+    res["law"] = law
     if law == "jcfpm":
         lw = O.engines[2].lawDispatcher.functors[0]
         res["jcfpm_tensile_shear_cracks"] = [int(lw.nbTensCracks), int(lw.nbShearCracks)]
@@ -329,26 +203,6 @@ def run_uniaxial(law, assembly, info, mode="tension", deps_per_step=2e-8, chunk=
             modes[m] = modes.get(m, 0) + 1
         res["swelldem_failure_modes"] = {str(k): v for k, v in modes.items()}
     return res
-
-
-def _per_kind(mask, kind):
-    d = {name: int(np.sum(mask & (kind == k))) for k, name in enumerate(KIND_NAMES)}
-    d["total"] = int(mask.sum())
-    return d
-
-
-def fit_modulus(strain, stress, eps_peak, eps_first_break=None, window=(0.3, 0.9)):
-    """Macroscopic modulus [Pa]: slope of an affine least-squares fit of stress against strain over
-    the elastic range, strains within `window` x the elastic limit (the strain of the first break,
-    or 0.5 x the strain at peak when nothing broke before it). The lower bound skips the start-up
-    transient (the bands start moving at once; the interior follows a few wave transits later)."""
-    lim = 0.5 * eps_peak
-    if eps_first_break is not None and 0 < eps_first_break < eps_peak:
-        lim = eps_first_break
-    sel = (strain >= window[0] * lim) & (strain <= window[1] * lim)
-    if sel.sum() < 3:
-        return float("nan")
-    return float(np.polyfit(strain[sel], stress[sel], 1)[0])
 
 
 def calibrate_cpm(assembly, moduli, target_modulus, target_peak, deps_per_step, damping, iterations=2, log=print):
@@ -391,9 +245,8 @@ SWELL_T_START, SWELL_T_END = 1.0, 3650.0   # [day]
 
 
 def larive_fraction(t0, t1, kinetics=SWELL_KINETICS):
-    """xi(t1) - xi(t0) of Larive's sigmoid (scene.larive_xi): the swelling our law applies from t0
+    """xi(t1) - xi(t0) of Larive's sigmoid (paper.larive_xi): the swelling our law applies from t0
     to t1, by which the stock laws' radius growth is scaled."""
-    from .scene import larive_xi
     return float(larive_xi(t1, kinetics) - larive_xi(t0, kinetics))
 
 
@@ -401,12 +254,11 @@ def disc_growth(assembly, eps_inf, pattern="mortar"):
     """Per-disc radial swelling strain g_i [-]: 'mortar' (the cement paste swells, aggregates do
     not: g = eps_inf on mortar discs, 0 on aggregate discs, the closest a radius growth comes to
     ISR) or 'uniform' (every disc)."""
-    from .meso.assembly import MORTAR_MATERIAL
     if pattern == "mortar":
-        return np.where(np.asarray(assembly.material) == MORTAR_MATERIAL, eps_inf, 0.0)
+        return np.where(np.asarray(assembly.material) == meso.MORTAR_MATERIAL, eps_inf, 0.0)
     if pattern == "uniform":
         return np.full(assembly.n_particles, float(eps_inf))
-    raise ValueError(f"swelldem.cohesive_compare: pattern = {pattern!r} is out of range; allowed: mortar, uniform")
+    raise ValueError(f"cohesive_laws: pattern = {pattern!r} is out of range; allowed: mortar, uniform")
 
 
 def contact_normal_forces(law, contacts):
@@ -444,10 +296,8 @@ def free_swelling(law, assembly, moduli, eps_inf=1000e-6, pattern="mortar", dama
                                      ("damping", damping, 0 <= damping < 1, "[0, 1)"),
                                      ("steps_per_decade", steps_per_decade, steps_per_decade > 0, "> 0")):
         if not ok:
-            raise ValueError(f"swelldem.cohesive_compare.free_swelling: {name} = {value} is out of range; allowed: {allowed}")
+            raise ValueError(f"cohesive_laws.free_swelling: {name} = {value} is out of range; allowed: {allowed}")
     yade, W = _yade()
-    from . import measure, meso
-    from .scene import contact_kind
     O = yade.Omega()
     t0 = time.time()
     g = disc_growth(assembly, eps_inf, pattern)
@@ -456,18 +306,17 @@ def free_swelling(law, assembly, moduli, eps_inf=1000e-6, pattern="mortar", dama
     res = {"law": law, "case": f"free swelling ({pattern})", "pattern": pattern, "eps_inf": eps_inf, "xi_fraction": frac,
            "damage": damage, "tolerance": tolerance}
     if law == "swelldem":
-        kinds = {name: contact_kind(name, behaviour="elastic", young=moduli[name], shear_ratio=SHEAR_RATIO, damage=damage,
+        kinds = {name: dem.contact_kind(name, behaviour="elastic", young=moduli[name], shear_ratio=SHEAR_RATIO, damage=damage,
                                     tensile_strength=TENSILE_STRENGTH[name], residualFrictionAngle=FRICTION_ANGLE,
                                     kinetics=SWELL_KINETICS, swelling=True)
                  for name in KIND_NAMES}
-        solver = W.AdrLogTimeIntegrator(tStart=SWELL_T_START, tEnd=SWELL_T_END, stepsPerDecade=steps_per_decade,
-                                        tolerance=tolerance, verbose=False)
-        ys = meso.to_yade(assembly, kinds, solver)
+        solver = dem.make_solver("adr", tStart=SWELL_T_START, tEnd=SWELL_T_END, stepsPerDecade=steps_per_decade,
+                                 tolerance=tolerance, verbose=False)
+        ys = dem.to_yade(assembly, kinds, solver)
         contacts = np.asarray(ys.contacts)
         i, j = contacts[:, 0], contacts[:, 1]
-        meso.set_contact_swelling(ys, np.arange(len(contacts)), g[i] * assembly.r[i] + g[j] * assembly.r[j])
-        from .scene import run_to_end
-        run_to_end(solver)
+        dem.set_contact_swelling(ys, np.arange(len(contacts)), g[i] * assembly.r[i] + g[j] * assembly.r[j])
+        dem.run_to_end(solver)
         res.update(steps=int(solver.totalIterations), unbalanced=float(solver.unbalanced))
     elif law in ("cohfrict", "jcfpm"):
         info = build(law, assembly, moduli, damping=damping, damage=damage)
@@ -494,7 +343,7 @@ def free_swelling(law, assembly, moduli, eps_inf=1000e-6, pattern="mortar", dama
         if unb > tolerance:
             res["status"] = f"not relaxed: unbalancedForce {unb:.3g} after {steps} steps"
     else:
-        raise ValueError(f"swelldem.cohesive_compare: law = {law!r} has no free-swelling case; allowed: swelldem, cohfrict, jcfpm")
+        raise ValueError(f"cohesive_laws: law = {law!r} has no free-swelling case; allowed: swelldem, cohfrict, jcfpm")
     cur = np.array([[O.bodies[k].state.pos[0], O.bodies[k].state.pos[1]] for k in range(assembly.n_particles)])
     sel = assembly.coordination() >= 2  # discs held by fewer than 2 contacts are loose in a free specimen
     st = measure.affine_strain(ref[sel], cur[sel])
@@ -505,7 +354,7 @@ def free_swelling(law, assembly, moduli, eps_inf=1000e-6, pattern="mortar", dama
     for k, name in enumerate(KIND_NAMES):
         f = fn[kind == k]
         q[name] = [float(np.percentile(f, 5)), float(np.percentile(f, 95))] if len(f) else [float("nan")] * 2
-    res.update(eps_xx=st["eps_xx"], eps_yy=st["eps_yy"], fn_N=fn.tolist(), fn_p05_p95_N=q, broken_end=_per_kind(br, kind),
+    res.update(eps_xx=st["eps_xx"], eps_yy=st["eps_yy"], fn_N=fn.tolist(), fn_p05_p95_N=q, broken_end=count_per_kind(br, kind),
                broken_contacts_end=np.flatnonzero(br).tolist(), wall_s=time.time() - t0, n_contacts=int(len(contacts)),
                n_particles=int(assembly.n_particles))
     res.setdefault("status", "finished")

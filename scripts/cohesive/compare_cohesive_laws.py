@@ -4,7 +4,7 @@ off) and YADE's stock cohesive laws (CohFrictPhys, JCFpmPhys matched per contact
 calibrated to the same macroscopic modulus and tensile peak), in quasi-static uniaxial tension and
 compression (issue 8; docs/cohesive-laws.md).
 
-  scripts/yade-swelldem -j 1 -n -x scripts/compare_cohesive_laws.py [--size-mm 15 15] [--seed 2] \
+  scripts/yade-swelldem -j 1 -n -x scripts/cohesive/compare_cohesive_laws.py [--size-mm 15 15] [--seed 2] \
       [--deps 1e-8] [--damping 0.6] [--beta B] [--laws swelldem cohfrict jcfpm cpm] \
       [--cases tension compression swelling] [--rate-check] --out DIR
 
@@ -19,11 +19,13 @@ import os
 import sys
 import time
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(sys.argv[0]))), "py"))
+HERE = os.path.dirname(os.path.abspath(sys.argv[0]))
+sys.path[:0] = [HERE, os.path.join(os.path.dirname(os.path.dirname(HERE)), "py")]
 import numpy as np  # noqa: E402
 
-from swelldem import cohesive_compare as cc  # noqa: E402
+import cohesive_laws as cc  # noqa: E402  (the study, beside this script)
 from swelldem import meso, scenario  # noqa: E402
+from swelldem.paper import KIND_NAMES, TENSILE_STRENGTH  # noqa: E402
 
 ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
 ap.add_argument("--size-mm", type=float, nargs=2, default=(15.0, 15.0), metavar=("W", "H"))
@@ -67,7 +69,7 @@ else:
     cal = scenario.calibrate_modulus_factor(shear_ratio=cc.SHEAR_RATIO)
     log(f"beta = {cal['beta']:.4f} (calibrate_modulus_factor, mortar 15 x 15 mm, seed 11)")
 moduli = cc.contact_moduli(cal["beta"])
-res = {"config": vars(args), "calibration": cal, "contact_moduli_Pa": moduli, "tensile_strength_Pa": cc.TENSILE_STRENGTH,
+res = {"config": vars(args), "calibration": cal, "contact_moduli_Pa": moduli, "tensile_strength_Pa": TENSILE_STRENGTH,
        "assembly": {k: summary[k] for k in ("n_particles", "n_contacts", "contacts_by_kind", "aggregate_area_fraction")},
        "runs": {}}
 
@@ -170,8 +172,8 @@ if res.get("swelling"):
         f = np.array(r["fn_N"])
         dev = float(np.max(np.abs(f - ref[d])) / np.max(np.abs(ref[d]))) if d in ref and law != "swelldem" else float("nan")
         srows.append({"law": law, "damage": d == "dmg", "eps_xx_1e-6": r["eps_xx"] * 1e6, "eps_yy_1e-6": r["eps_yy"] * 1e6,
-                      **{f"fn_{i}_kN_{n}": q[n][k] / 1e3 for n in cc.KIND_NAMES for k, i in enumerate(("p05", "p95"))},
-                      **{f"broken_{n}": r["broken_end"][n] for n in cc.KIND_NAMES}, "max_dFn_rel_to_swelldem": dev,
+                      **{f"fn_{i}_kN_{n}": q[n][k] / 1e3 for n in KIND_NAMES for k, i in enumerate(("p05", "p95"))},
+                      **{f"broken_{n}": r["broken_end"][n] for n in KIND_NAMES}, "max_dFn_rel_to_swelldem": dev,
                       "steps": r["steps"], "wall_s": r["wall_s"], "status": r["status"]})
     with open(os.path.join(args.out, "swelling.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(srows[0]))
@@ -185,7 +187,7 @@ if res.get("swelling"):
               "max dFn / max Fn against swelldem | steps | wall (s) |", "|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in srows:
         lines.append(f"| {cc.LAW_TITLES[r['law']]} | {'on' if r['damage'] else 'off'} | {r['eps_xx_1e-6']:.1f} | {r['eps_yy_1e-6']:.1f} | "
-                     + " | ".join(f"{r[f'fn_p05_kN_{n}']:.2f} / {r[f'fn_p95_kN_{n}']:.2f}" for n in cc.KIND_NAMES)
+                     + " | ".join(f"{r[f'fn_p05_kN_{n}']:.2f} / {r[f'fn_p95_kN_{n}']:.2f}" for n in KIND_NAMES)
                      + f" | {r['broken_MORTAR']}/{r['broken_ITZ']}/{r['broken_AGG']} | "
                      + ("-" if r["law"] == "swelldem" else f"{r['max_dFn_rel_to_swelldem']:.2g}") + f" | {r['steps']} | {r['wall_s']:.1f} |")
 lines.append(f"Total wall time {time.time() - t_start:.0f} s.")
@@ -224,7 +226,7 @@ for law, case, broken_end, subtitle in maps:
         q = np.asarray(poly) * 1e3
         ax.fill(q[:, 0], q[:, 1], color="0.85", lw=0.5, ec="0.5")
     broken = np.array(broken_end, dtype=int)
-    for k, name in enumerate(cc.KIND_NAMES):
+    for k, name in enumerate(KIND_NAMES):
         sel = broken[assembly.kind[broken] == k] if len(broken) else broken
         segs = [[(s[0], s[1]), (s[2], s[3])] for s in assembly.facet_segment_m[sel] * 1e3]
         if segs:

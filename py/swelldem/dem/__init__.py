@@ -1,0 +1,24 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""swelldem.dem: everything that talks to YADE and the swelldem plugin.
+
+* :mod:`.scene`: contact kinds from the paper's data, discs, engines, the solver chosen by name
+  (:func:`make_solver`), the one scene builder (:func:`build_scene`), :func:`run_to_end`;
+* :mod:`.meso_scene`: a :class:`swelldem.meso.Assembly` as a scene (:func:`to_yade`), per-contact
+  swelling and the gel pockets of ASR with reactive coarse aggregate;
+* :mod:`.recorder`: what a swelling test records after every converged physical step (the
+  solver's ``stepHook``), VTK export;
+* :mod:`.uniaxial`: displacement-controlled uniaxial tension or compression between two bands of
+  discs (virtual tests of a specimen's stiffness and strength).
+
+The modules import YADE only when a function needs it, and then through
+:func:`swelldem.plugin.require`: in plain Python they import, and their functions raise
+:class:`swelldem.plugin.YadeUnavailableError` with the command to use instead.
+"""
+from ..plugin import YadeUnavailableError
+from .meso_scene import MAX_GAP_RATIO, YadeScene, set_contact_swelling, set_gel_pockets, to_yade
+from .scene import (BEHAVIOURS, SOLVERS, build_scene, contact_kind, disc, engines, kind_attributes, make_solver,
+                    reset_keeping_tags, run_to_end)
+
+__all__ = ["BEHAVIOURS", "MAX_GAP_RATIO", "SOLVERS", "YadeScene", "YadeUnavailableError", "build_scene", "contact_kind", "disc",
+           "engines", "kind_attributes", "make_solver", "reset_keeping_tags", "run_to_end", "set_contact_swelling",
+           "set_gel_pockets", "to_yade"]

@@ -1,0 +1,87 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""What a swelling test records after every converged physical step, given to the solver as its
+``stepHook`` (a Python callable the engine calls with no arguments after each converged step),
+and the VTK export through YADE's own exporter."""
+import os
+import time
+
+import numpy as np
+
+from ..measure import affine_strain
+from ..paper import KIND_NAMES
+from ..plugin import require
+from ..report import write_results
+
+
+def _yade():
+    return require("swelldem.dem.recorder")
+
+
+def contact_arrays():
+    """(kindId, Fn [N], broken) of every real interaction in O, as numpy arrays."""
+    yade, _ = _yade()
+    kind, fn, broken = [], [], []
+    for i in yade.Omega().interactions:
+        if not i.isReal:
+            continue
+        p = i.phys
+        kind.append(p.kindId)
+        fn.append(p.Fn)
+        broken.append(p.broken)
+    return np.array(kind, dtype=int), np.array(fn), np.array(broken, dtype=bool)
+
+
+def broken_contacts():
+    """(id1, id2, kindId) of every broken real interaction in O (the crack map's input)."""
+    yade, _ = _yade()
+    return [(i.id1, i.id2, i.phys.kindId) for i in yade.Omega().interactions if i.isReal and i.phys.broken]
+
+
+class StepRecorder:
+    """Per converged physical step, appends to the results dict `res`: time [day], the swelling
+    strains (affine fit of the skeleton's displacements), the unbalanced-force ratio, the step's
+    iterations and round-off flag, and per contact kind the 5 % / 95 % normal-force quantiles
+    [kN] and the broken contacts; then rewrites results.json in `out` (a run that stops later
+    keeps what it had) and, every vtk_every steps, the VTK files."""
+
+    def __init__(self, assembly, yscene, solver, res, out, vtk_every=0):
+        self.a, self.ys, self.solver, self.res, self.out, self.vtk_every = assembly, yscene, solver, res, out, vtk_every
+        self.ref = np.column_stack([assembly.x, assembly.y])
+        # Strain of the load-bearing skeleton: discs with fewer than 2 contacts (held by the
+        # specimen's sides during packing) are loose in a free specimen and do not follow it.
+        self.weights = np.where(assembly.coordination() >= 2, assembly.r ** 2, 0.0)
+        self.t0 = time.time()
+
+    def __call__(self):
+        s = affine_strain(self.ref, self.ys.positions(), weights=self.weights)
+        kind, fn, broken = contact_arrays()
+        r, solver = self.res, self.solver
+        r["times_days"].append(solver.physTime)
+        r["swelling_strain_x"].append(s["eps_xx"])
+        r["swelling_strain_y"].append(s["eps_yy"])
+        r["unbalanced_ratio"].append(solver.unbalanced)
+        r["adr_iterations_per_step"].append(int(solver.stepIterations[-1]))
+        round_off = getattr(solver, "stepRoundOff", None)  # a solver without a round-off stop has none
+        r["step_at_round_off"].append(bool(round_off[-1]) if round_off else False)
+        for k, name in enumerate(KIND_NAMES):
+            sel = kind == k
+            q05, q95 = (np.quantile(fn[sel], [0.05, 0.95]) / 1e3).tolist() if sel.any() else (float("nan"),) * 2
+            r["per_kind"][name]["fn_p05_kN"].append(q05)
+            r["per_kind"][name]["fn_p95_kN"].append(q95)
+            r["per_kind"][name]["broken"].append(int(broken[sel].sum()))
+        r["adr_iterations"] = solver.totalIterations
+        r["wall_s"] = time.time() - self.t0
+        if self.vtk_every and solver.step % self.vtk_every == 0:
+            export_vtk(self.out)
+        write_results(self.out, r)
+
+
+def export_vtk(out):
+    """Particles and contacts of O through YADE's own exporter into out/vtk/ (ParaView opens the
+    .vtu/.vtk files): aggregate id and displacement [m] of the discs; kind, Fn [N] and broken of the contacts."""
+    _yade()
+    from yade import export
+    os.makedirs(os.path.join(out, "vtk"), exist_ok=True)
+    vtk = export.VTKExporter(os.path.join(out, "vtk", "swelling"))
+    vtk.exportSpheres(what=dict(aggregateId="b.material.aggregateId", displacement="b.state.displ()"))
+    vtk.exportInteractions(what=dict(kind="i.phys.kindId", fn="i.phys.Fn", broken="float(i.phys.broken)"))

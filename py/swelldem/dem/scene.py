@@ -1,0 +1,164 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""Building blocks of swelldem scenes in YADE: contact kinds from the paper's data, 2D discs, the
+engine list, the quasi-static solver chosen by name, and the one scene builder.
+
+Import inside YADE with the plugin (scripts/yade-swelldem); in plain Python every function that
+needs YADE raises swelldem.plugin.YadeUnavailableError.
+"""
+import numpy as np
+
+from .. import paper
+from ..plugin import require
+
+BEHAVIOURS = ("elastic", "aging-elastic", "viscoelastic")
+
+#: Quasi-static solvers by name: the plugin class of each. All share the settings tStart, tEnd
+#: [day], stepsPerDecade, extraTimes, tolerance, verbose and stepHook, and the results physTime,
+#: step, times, stepIterations, totalIterations, unbalanced, stepUnbalanced, finished.
+SOLVERS = {"adr": "AdrLogTimeIntegrator", "implicit": "ImplicitLogTimeSolver"}
+
+
+def _yade(user="swelldem.dem.scene"):
+    return require(user)
+
+
+def contact_kind(name, behaviour="elastic", young=30e9, b3="mortar", shear_ratio=0.3, swell_disp_inf=0.0, kinetics="isr",
+                 damage=False, tensile_strength=4e6, **extra):
+    """A ContactKind named `name` (kindId from swelldem.paper.KIND_IDS, 3 for other names) with the
+    paper's B3 q's of `b3` (a paper.B3_Q key) and the kinetics of `kinetics` (a paper.KINETICS key).
+    Units: young [Pa], swell_disp_inf [m], tensile_strength [Pa]. `extra` are further ContactKind
+    attributes by their plugin names (e.g. residualFrictionAngle, swelling, tensileStrength); they
+    override the values above. The ContactKind constructor validates every value and raises
+    ValueError naming it; an unknown name is a ValueError listing the known ones."""
+    if behaviour not in BEHAVIOURS:
+        raise ValueError(f"swelldem: behaviour = {behaviour!r} is out of range; allowed: {', '.join(BEHAVIOURS)}")
+    if b3 not in paper.B3_Q:
+        raise ValueError(f"swelldem: b3 = {b3!r} is out of range; allowed: {', '.join(paper.B3_Q)}")
+    if kinetics not in paper.KINETICS:
+        raise ValueError(f"swelldem: kinetics = {kinetics!r} is out of range; allowed: {', '.join(paper.KINETICS)}")
+    _, W = _yade()
+    check_kind_attributes(extra, f"ContactKind {name}")
+    q1, q2, q3, q4 = (q * 1e-12 for q in paper.B3_Q[b3])
+    tau_c, tau_l, _ = paper.KINETICS[kinetics]
+    swelling = bool(extra.pop("swelling", False)) or swell_disp_inf > 0  # a kind may swell through per-contact overrides only
+    kw = dict(name=name, kindId=paper.KIND_IDS.get(name, 3), behaviour=behaviour, young=young, shearRatio=shear_ratio,
+              q1=q1, q2=q2, q3=q3, q4=q4, swelling=swelling, swellDispInf=swell_disp_inf, tauC=tau_c, tauL=tau_l,
+              damage=damage, tensileStrength=tensile_strength)
+    kw.update(extra)  # named attributes have the last word (the per-kind overrides of a scenario)
+    return W.ContactKind(**kw)
+
+
+def kind_attributes():
+    """The names of ContactKind's attributes (settable by keyword or per kind from the command line)."""
+    _, W = _yade()
+    return sorted(W.ContactKind().dict())
+
+
+def check_kind_attributes(attrs, where):
+    """ValueError naming the first of `attrs` (names) that ContactKind does not have."""
+    if not attrs:
+        return
+    known = kind_attributes()
+    for a in attrs:
+        if a not in known:
+            raise ValueError(f"swelldem: {where} attribute = {a!r} is out of range; allowed: {', '.join(known)}")
+
+
+def make_solver(name, **settings):
+    """The quasi-static engine `name` (a SOLVERS key) with `settings` by their plugin names
+    (tStart, tEnd [day], stepsPerDecade, tolerance, verbose, label, ...); its constructor validates
+    them. ValueError before anything is built when the name is unknown or its class is not in the
+    loaded plugin."""
+    if name not in SOLVERS:
+        raise ValueError(f"swelldem: solver = {name!r} is out of range; allowed: {', '.join(SOLVERS)}")
+    _, W = _yade()
+    cls = getattr(W, SOLVERS[name], None)
+    if cls is None:
+        have = ", ".join(n for n, c in SOLVERS.items() if hasattr(W, c))
+        raise ValueError(f"swelldem: solver = {name!r} is out of range; allowed: {have} "
+                         f"(this build of the plugin has no {SOLVERS[name]})")
+    return cls(**settings)
+
+
+def disc(center_xy, radius, material, fixed=False):
+    """A 2D disc: a YADE sphere in the plane z = 0 with z translation and x, y rotations blocked
+    (all blocked when fixed). center_xy, radius [m]."""
+    yade, _ = _yade()
+    b = yade.utils.sphere((center_xy[0], center_xy[1], 0.0), radius, material=material)
+    b.state.blockedDOFs = "xyzXYZ" if fixed else "zXY"
+    return b
+
+
+def engines(ip2, law2, integrator, ig2=None, detection_factor=1.0, collider=True, extra_engines=()):
+    """ForceResetter, the collider (when `collider`), InteractionLoop (label 'iloop'), extra_engines,
+    then the integrator. detection_factor [-] is the sphere geometry functor's
+    interactionDetectionFactor and the bounding boxes' aabbEnlargeFactor (ig2, if given, is used as is)."""
+    _, W = _yade()
+    ig2 = ig2 if ig2 is not None else W.Ig2_Sphere_Sphere_ScGeom(interactionDetectionFactor=detection_factor)
+    out = [W.ForceResetter()]
+    if collider:
+        out.append(W.InsertionSortCollider([W.Bo1_Sphere_Aabb(aabbEnlargeFactor=detection_factor)], verletDist=0, label="collider"))
+    out.append(W.InteractionLoop([ig2], [ip2], [law2], label="iloop"))
+    return out + list(extra_engines) + ([integrator] if integrator is not None else [])
+
+
+def reset_keeping_tags():
+    """O.reset() that keeps O.tags (a yade-batch job's id, description and params live there)."""
+    yade, _ = _yade()
+    O = yade.Omega()
+    tags = dict(O.tags)
+    O.reset()
+    for k, v in tags.items():
+        O.tags[k] = v
+
+
+def build_scene(x, y, r, materials, ip2, law2, integrator, material_of=None, contacts=None, fixed=(), ig2=None,
+                detection_factor=1.0, collider=True, extra_engines=(), reset=True):
+    """Fills ``yade.Omega()`` with 2D discs, their engines and bonded contacts; every swelldem scene
+    (scenario, benchmarks, cohesive comparison, two particles) is built here.
+
+    x, y, r [m]: disc centres and radii (body id = index); materials: YADE materials, appended to
+    O.materials in order; material_of: per disc, an index into `materials` (default all 0);
+    ip2, law2: the physics and law functors; integrator: the last engine (or None);
+    contacts: (m, 2) disc indices whose interactions are created now (bonded, whatever their gap),
+    or None to let the collider find them; fixed: indices of discs held in every direction;
+    ig2, detection_factor, collider, extra_engines: see :func:`engines`.
+    reset: O.reset() first, keeping O.tags; otherwise O must hold no bodies yet.
+    Returns (body ids as an int array, list of the created interactions in `contacts` order)."""
+    yade, _ = _yade()
+    O = yade.Omega()
+    n = len(r)
+    if reset:
+        reset_keeping_tags()
+    elif len(O.bodies) > 0:
+        raise ValueError(f"swelldem: O holds {len(O.bodies)} bodies; allowed: none (reset=True, or an empty scene: "
+                         "body id = disc index is required)")
+    fixed_set = {int(i) for i in np.atleast_1d(np.asarray(fixed, dtype=np.int64))}
+    bad = [i for i in fixed_set if not 0 <= i < n]
+    if bad:
+        raise ValueError(f"swelldem: fixed disc indices {bad[:5]} are out of range; allowed: 0..{n - 1}")
+    for m in materials:
+        O.materials.append(m)
+    which = np.zeros(n, dtype=int) if material_of is None else np.asarray(material_of, dtype=int)
+    bodies = [disc((float(x[i]), float(y[i])), float(r[i]), materials[which[i]], fixed=i in fixed_set) for i in range(n)]
+    ids = np.asarray(O.bodies.append(bodies), dtype=np.int64)
+    if not np.array_equal(ids, np.arange(n)):
+        raise RuntimeError("swelldem: YADE gave body ids different from the disc indices")
+    O.engines = engines(ip2, law2, integrator, ig2=ig2, detection_factor=detection_factor, collider=collider,
+                        extra_engines=extra_engines)
+    # utils.createInteraction asks the geometry functor with force=True: a contact with a gap is
+    # created whatever the detection factor; once real, the geometry functor keeps it.
+    inters = []
+    for c, (i, j) in enumerate(np.asarray(contacts if contacts is not None else [], dtype=np.int64).reshape(-1, 2)):
+        I = yade.utils.createInteraction(int(i), int(j))
+        if I is None or not I.isReal:
+            raise RuntimeError(f"swelldem: contact {c} ({i}, {j}) did not become a real interaction")
+        inters.append(I)
+    return ids, inters
+
+
+def run_to_end(solver, chunk=2000):
+    """Runs until the solver has converged its last physical step (errors propagate)."""
+    yade, _ = _yade()
+    while not solver.finished:
+        yade.Omega().run(chunk, True)
