@@ -49,6 +49,18 @@ void ContactKind::beginStep(Real shortestLag_, Real longestLag_, Real tPrev, Rea
 	}
 	changed_.store(false, std::memory_order_release);
 	law_->beginStep(tPrev, t);
+	stepStart = tPrev;
+	stepEnd   = t;
+}
+
+void ContactKind::afterLoad()
+{
+	if (!(stepEnd > 0)) return;
+	std::lock_guard<std::mutex> lock(lawMutex_);
+	auto law = std::make_unique<core::ContactLaw>(params(), shortestLag, longestLag);
+	law->beginStep(stepStart, stepEnd);
+	install(std::move(law));
+	changed_.store(false, std::memory_order_release);
 }
 
 core::ContactLaw& ContactKind::law()

@@ -2,9 +2,9 @@
 // Parameters shared by all contacts of one kind (MORTAR, ITZ, AGG): YADE's face of the physics
 // core's ContactKindParams (its table of per-kind parameters, SWELLDEM_KIND_PARAMETERS, becomes
 // this class's Python attributes and saved fields), plus the core ContactLaw built from them.
-// The law is not saved: the log-time solvers build it at their first step and after O.load, and
-// rebuild it at the next step when a parameter was changed; under another integrator it is
-// built once, at first use.
+// The law is not saved: the log-time solvers build it at their first step, a loaded kind rebuilds
+// it on the step it was in, and a parameter changed during a run rebuilds it at the next step;
+// under another integrator it is built at first use.
 #pragma once
 #include "compat/Plugin.hpp"
 #include "core/ContactLaw.hpp"
@@ -32,7 +32,9 @@ public:
 	X(bool, breaksAtEquilibrium, false, swelldem_attr::Result,                                                                                           \
 	  "Set by the log-time solvers: intact contacts break only at equilibrium; false under other integrators: the law breaks at once [-]")            \
 	X(Real, shortestLag, 1e-2, swelldem_attr::Result, "Shortest load duration the Kelvin chain resolves (set by the log-time solvers: first step) [day]") \
-	X(Real, longestLag, 1e5, swelldem_attr::Result, "Longest load duration the Kelvin chain resolves (set by the log-time solvers: the run span) [day]")
+	X(Real, longestLag, 1e5, swelldem_attr::Result, "Longest load duration the Kelvin chain resolves (set by the log-time solvers: the run span) [day]") \
+	X(Real, stepStart, 0.0, swelldem_attr::Internal, "Start of the physical step the law has begun (0: none) [day]")                                  \
+	X(Real, stepEnd, 0.0, swelldem_attr::Internal, "End of the physical step the law has begun [day]")
 	SWELLDEM_CLASS_WITH_TABLE(ContactKind, Serializable,
 	                          "Parameters shared by all contacts of one kind (MORTAR, ITZ or AGG): stiffness, aging viscoelasticity (B3), "
 	                          "swelling kinetics (Larive) and brittle strength. A change to a parameter during a run takes effect "
@@ -44,6 +46,8 @@ public:
 	ContactKind() { }
 	virtual ~ContactKind() { }
 	void postLoad();
+	/// A saved kind comes back with its law begun on the step it was in, before any contact uses it.
+	void afterLoad();
 	template <class C> static void pyMethods(C& cls)
 	{
 		cls.def("compliance", &ContactKind::compliance, "B3 J(t, t') of the kind's q's, t and t' in days [1/Pa].");

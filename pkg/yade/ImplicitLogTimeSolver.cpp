@@ -18,9 +18,6 @@ struct ImplicitLinearSystem {
 	std::vector<int>                                   slots;      // per contact, the 21 entries of its 6 x 6 lower triangle (-1: held)
 	std::vector<int>                                   diagSlot;   // per equation
 	std::vector<char>                                  active;     // per contact: its core::ContactLaw::Mode
-	std::vector<signed char>                           side;       // per contact, this step: open, sticking or the side it slid on
-	std::vector<char>                                  turns;      // per contact, this step: times it turned (opened/closed, slip reversed)
-	long                                               stepOf = -1; // the step side and turns belong to
 	std::vector<double>                                factored;   // values of the current factor
 	SpMat                                              K;
 	Eigen::CholmodDecomposition<SpMat, Eigen::Lower>   chol;
@@ -48,7 +45,7 @@ namespace {
 	// or slides on one side of the Coulomb cone, then on the other (met on 40 mm ISR damage runs).
 	// A contact that has turned twice in a step keeps its full stiffness in the tangent for the rest
 	// of the step: the iterations then converge (linearly) to the same equilibrium, YADE's residual.
-	char contactTangent(const Interaction* I, signed char& side, char& turns, Real& kn, Real& ks)
+	char contactTangent(const Interaction* I, int& side, int& turns, Real& kn, Real& ks)
 	{
 		const auto* sp = dynamic_cast<const SwellPhys*>(I->phys.get());
 		if (!sp) {
@@ -60,7 +57,7 @@ namespace {
 		const Mode m = sp->kind->law().mode(sp->state);
 		if (m != Mode::Intact) {
 			// side: 2 open, +-1 sliding on either side of the cone, 3 sticking
-			const signed char now = m == Mode::Open ? 2 : (m == Mode::Sticking ? 3 : (sp->state.trial.Fs > 0 ? 1 : -1));
+			const int   now = m == Mode::Open ? 2 : (m == Mode::Sticking ? 3 : (sp->state.trial.Fs > 0 ? 1 : -1));
 			const bool        turned = side != 0 && now != side && (now == 2 || side == 2 || now == -side);
 			if (turned && turns < 2) ++turns;
 			side = now;
@@ -205,8 +202,6 @@ void ImplicitLogTimeSolver::newtonStep()
 		S.factored.clear();
 		S.haveFactor = false;
 		S.active.assign(contacts.size(), 0);
-		S.side.assign(contacts.size(), 0);
-		S.turns.assign(contacts.size(), 0);
 		++analyses;
 	}
 	if (S.nEq == 0) return;
@@ -216,16 +211,15 @@ void ImplicitLogTimeSolver::newtonStep()
 	//    gives the law).
 	double* v = S.K.valuePtr();
 	std::fill(v, v + S.K.nonZeros(), 0.0);
-	if (S.stepOf != step) {
-		std::fill(S.side.begin(), S.side.end(), 0);
-		std::fill(S.turns.begin(), S.turns.end(), 0);
-		S.stepOf = step;
+	if (iterInStep == 1 || contactSide.size() != contacts.size()) {
+		contactSide.assign(contacts.size(), 0);
+		contactTurns.assign(contacts.size(), 0);
 	}
 	long changes = 0;
 	for (size_t c = 0; c < contacts.size(); ++c) {
 		const Interaction* I = contacts[c];
 		Real               kn, ks;
-		const char         state = contactTangent(I, S.side[c], S.turns[c], kn, ks);
+		const char         state = contactTangent(I, contactSide[c], contactTurns[c], kn, ks);
 		changes += state != S.active[c];
 		S.active[c] = state;
 		if (kn == 0 && ks == 0) continue;

@@ -38,7 +38,14 @@ public:
 	X(long, analyses, 0, swelldem_attr::Result, "Symbolic analyses (contact graph changes) so far [-]")                                               \
 	X(long, activeChanges, 0, swelldem_attr::Result, "Contacts whose state (intact, open, sticking, sliding) changed in the last iteration [-]")              \
 	X(std::vector<int>, pinnedDofs, std::vector<int>(), swelldem_attr::Internal,                                                                       \
-	  "Degrees of freedom held to remove a free specimen's rigid-body modes, as 3 x body id + axis (0 x, 1 y) [-]")
+	  "Degrees of freedom held to remove a free specimen's rigid-body modes, as 3 x body id + axis (0 x, 1 y) [-]")                                  \
+	X(std::vector<int>, contactSide, std::vector<int>(), swelldem_attr::Internal,                                                                      \
+	  "Per contact in this step: 0 not yet seen broken, 2 open, 3 sticking, +-1 sliding on either side of the Coulomb cone [-]")                   \
+	X(std::vector<int>, contactTurns, std::vector<int>(), swelldem_attr::Internal, "Per contact: times it turned (opened/closed, slip reversed) this step [-]") \
+	X(bool, relaxing, false, swelldem_attr::Internal, "The step is in a dynamic relaxation phase [-]")                                                  \
+	X(long, newtonSince, 0, swelldem_attr::Internal, "Iteration of the step at which Newton (re)started [-]")                                         \
+	X(int, relaxPhase, 0, swelldem_attr::Internal, "Dynamic relaxation phases in the current round [-]")                                             \
+	X(DynamicRelaxation, relax, DynamicRelaxation(), swelldem_attr::Internal, "State of the dynamic relaxation phases [-]")
 	SWELLDEM_CLASS(ImplicitLogTimeSolver, LogTimeSolver,
 	               "Quasi-static log-time solver for 2D swelldem scenes with an exact equilibrium at each physical step: Newton "
 	               "iterations on YADE's own residual with a sparse Cholesky factor (CHOLMOD) of the contacts' step stiffness, "
@@ -54,11 +61,7 @@ public:
 private:
 	void                                  choosePins();
 	void                                  newtonStep();
-	std::unique_ptr<ImplicitLinearSystem> sys;
-	DynamicRelaxation                     relax;        // not saved: a reload goes on by Newton
-	bool                                  relaxing    = false;
-	long                                  newtonSince = 0; // iteration of the step at which Newton (re)started
-	int                                   relaxPhase  = 0; // relaxations in the current round
+	std::unique_ptr<ImplicitLinearSystem> sys; // not saved: rebuilt from the scene, it gives the same factor
 };
 
 } // namespace yade

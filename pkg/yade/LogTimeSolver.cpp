@@ -45,7 +45,7 @@ void LogTimeSolver::afterLoad()
 {
 	sessionStart = std::chrono::steady_clock::now();
 	wallBefore   = stepWall.empty() ? 0.0 : stepWall.back();
-	rebeginStep  = true;
+	kindsStale   = true;
 }
 
 double LogTimeSolver::wallNow() const
@@ -160,23 +160,18 @@ void LogTimeSolver::initialize()
 		std::fflush(stdout);
 	}
 	beginPhysicalStep();
-	rebeginStep = false;
-}
-
-void LogTimeSolver::beginKindsStep()
-{
-	// Each kind's law is built for the whole analysis: its Kelvin chain spans the first step to the run's span.
-	const double shortest = times[1] - times[0], span = tEnd - tStart;
-	for (ContactKind* k : kinds)
-		k->beginStep(shortest, span, times[step - 1], times[step]);
+	kindsStale = false;
 }
 
 void LogTimeSolver::beginPhysicalStep()
 {
 	refreshKinds();
-	beginKindsStep();
-	for (ContactKind* k : kinds)
+	// Each kind's law is built for the whole analysis: its Kelvin chain spans the first step to the run's span.
+	const double shortest = times[1] - times[0], span = tEnd - tStart;
+	for (ContactKind* k : kinds) {
+		k->beginStep(shortest, span, times[step - 1], times[step]);
 		++k->stepSerial;
+	}
 	iterInStep = 0;
 	roundStart = 0;
 	zeroVelocities(scene);
@@ -191,10 +186,9 @@ bool LogTimeSolver::startIteration()
 	if (finished) return false;
 	const string err = takeFunctorError();
 	if (!err.empty()) fail(err);
-	if (rebeginStep) {
+	if (kindsStale) {
 		refreshKinds();
-		beginKindsStep();
-		rebeginStep = false;
+		kindsStale = false;
 	}
 	scene->forces.sync();
 	++iterInStep;

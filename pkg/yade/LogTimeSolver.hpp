@@ -102,7 +102,6 @@ protected:
 
 private:
 	void   initialize();
-	void   beginKindsStep();
 	void   beginPhysicalStep();
 	void   commitPhysicalStep();
 	void   refreshKinds();
@@ -114,7 +113,7 @@ private:
 	void   progressLine() const;
 	double wallNow() const;
 	std::chrono::steady_clock::time_point  sessionStart = std::chrono::steady_clock::now();
-	bool                                   rebeginStep  = true; // the kinds' laws are not saved: begin the current step again after O.load
+	bool                                   kindsStale   = true; // the list of kinds is not saved: made again after O.load
 	std::unique_ptr<boost::python::object> stepHook_;           // null: no hook (holds a Python reference: released under the GIL)
 };
 
