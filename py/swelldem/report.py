@@ -79,7 +79,7 @@ def plot_curves(out, res):
     ro = np.array(res.get("step_at_round_off", [False] * len(t)), dtype=bool)
     if ro.any():  # steps whose load was too small for the tolerance: ended at the positions' round-off
         ax.semilogy(steps[ro], np.array(res["unbalanced_ratio"])[ro], "x", color="tab:red", label="at round-off limit")
-    ax.axhline(res["config"]["tolerance"] if "config" in res else 1e-4, color="k", lw=0.5, ls=":", label="tolerance")
+    ax.axhline(res.get("tolerance") or res.get("config", {}).get("tolerance") or 1e-4, color="k", lw=0.5, ls=":", label="tolerance")
     ax.legend(fontsize=8)
     ax2 = ax.twinx()
     ax2.plot(np.arange(1, len(t) + 1), res["adr_iterations_per_step"], "-", color="gray", lw=1)

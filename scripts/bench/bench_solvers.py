@@ -1,0 +1,121 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""The two log-time solvers side by side on the same swelling tests: wall time and its ratio
+(ADR / implicit, both measured in this run, one after the other, so that the machine's drift hits
+both), iterations, peak memory, and the agreement of the results (final strains; per-kind 5 % and
+95 % force quantiles over all steps, relative to the kind's force range; broken counts).
+
+    /usr/bin/python3 scripts/bench/bench_solvers.py --sizes-mm 20 40 --scenarios isr asr-fine asr-coarse
+        --behaviours elastic viscoelastic [--damage] [--adr-tolerance 1e-8] [--threads 1] --out out/bench/solvers
+
+Each run is `scripts/yade-swelldem -n -j THREADS -x scripts/swelling_test.py ...` under GNU time
+(peak memory), in OUT/<size>-<scenario>-<behaviour>-<dmg|nodmg>-<solver>/. A finished run is
+reused (delete its folder to time it again). Prints a Markdown table and writes OUT/solvers.json
+and OUT/solvers.md.
+"""
+import argparse
+import json
+import os
+import re
+import subprocess
+import sys
+import time
+
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def run_one(out, size, scenario, behaviour, damage, solver, tolerance, threads, seed):
+    if os.path.exists(os.path.join(out, "run.json")):
+        with open(os.path.join(out, "run.json")) as f:
+            return json.load(f)
+    os.makedirs(out, exist_ok=True)
+    cmd = ["/usr/bin/time", "-v", "-o", os.path.join(out, "time.txt"), os.path.join(REPO, "scripts", "yade-swelldem"), "-n", "-j",
+           str(threads), "-x", os.path.join(REPO, "scripts", "swelling_test.py"), "--scenario", scenario, "--behaviour", behaviour,
+           "--size-mm", str(size), str(size), "--seed", str(seed), "--solver", solver, "--out", out]
+    if not damage:
+        cmd.append("--no-damage")
+    if tolerance:
+        cmd += ["--tolerance", str(tolerance)]
+    t0 = time.time()
+    with open(os.path.join(out, "log.txt"), "w") as log:
+        rc = subprocess.call(cmd, stdout=log, stderr=subprocess.STDOUT)
+    wall = time.time() - t0
+    with open(os.path.join(out, "time.txt")) as f:
+        rss = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", f.read()).group(1)) / 1024
+    res = {}
+    if os.path.exists(os.path.join(out, "results.json")):
+        with open(os.path.join(out, "results.json")) as f:
+            res = json.load(f)
+    rec = {"rc": rc, "wall_s": wall, "run_wall_s": res.get("wall_s"), "peak_MB": rss, "status": res.get("status"),
+           "iterations": res.get("adr_iterations"), "n_particles": res.get("n_particles"),
+           "strain": [res["swelling_strain_x"][-1], res["swelling_strain_y"][-1]] if res.get("swelling_strain_x") else None,
+           "per_kind": res.get("per_kind")}
+    with open(os.path.join(out, "run.json"), "w") as f:
+        json.dump(rec, f)
+    return rec
+
+
+def agreement(a, b):
+    """Largest |difference| of the per-kind quantiles over all steps / the kind's force range, and
+    the relative difference of the final strains."""
+    worst = 0.0
+    for kind, d in a["per_kind"].items():
+        e = b["per_kind"][kind]
+        rng = max(max(abs(x) for x in d["fn_p05_kN"] + d["fn_p95_kN"]), 1e-30)
+        for q in ("fn_p05_kN", "fn_p95_kN"):
+            worst = max(worst, max(abs(x - y) for x, y in zip(d[q], e[q])) / rng)
+    strain = max(abs(x - y) / abs(x) for x, y in zip(a["strain"], b["strain"]))
+    return worst, strain
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--sizes-mm", type=float, nargs="+", default=[20.0])
+    ap.add_argument("--scenarios", nargs="+", default=["isr"])
+    ap.add_argument("--behaviours", nargs="+", default=["viscoelastic"])
+    ap.add_argument("--damage", action="store_true", help="damage on (default off)")
+    ap.add_argument("--adr-tolerance", type=float, default=0.0, help="ADR tolerance (0: its default 1e-4)")
+    ap.add_argument("--threads", type=int, default=1)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--out", default=os.path.join(REPO, "out", "bench", "solvers"))
+    a = ap.parse_args()
+    for name in ("adr_tolerance",):
+        v = getattr(a, name)
+        if not (v == 0 or 0 < v < 1):
+            sys.exit(f"bench_solvers.py: --{name.replace('_', '-')} = {v} is out of range; allowed: 0 or 0 < tol < 1")
+    if any(not (s > 0) for s in a.sizes_mm):
+        sys.exit(f"bench_solvers.py: --sizes-mm = {a.sizes_mm} is out of range; allowed: > 0 [mm]")
+    rows = []
+    for size in a.sizes_mm:
+        for sc in a.scenarios:
+            for be in a.behaviours:
+                tag = f"{size:g}-{sc}-{be}-{'dmg' if a.damage else 'nodmg'}"
+                r = {}
+                for solver, tol in (("implicit", 0.0), ("adr", a.adr_tolerance)):
+                    r[solver] = run_one(os.path.join(a.out, f"{tag}-{solver}"), size, sc, be, a.damage, solver, tol, a.threads, a.seed)
+                row = {"case": tag, "adr": r["adr"], "implicit": r["implicit"]}
+                if r["adr"]["strain"] and r["implicit"]["strain"]:
+                    row["force_agreement"], row["strain_agreement"] = agreement(r["adr"], r["implicit"])
+                    row["wall_ratio"] = r["adr"]["wall_s"] / r["implicit"]["wall_s"]
+                rows.append(row)
+                print(json.dumps({k: v for k, v in row.items() if k not in ("adr", "implicit")}), flush=True)
+    lines = ["| case | discs | ADR wall s | implicit wall s | ADR / implicit | ADR iterations | implicit iterations | peak MB (ADR / impl.) "
+             "| quantiles: max diff / kind range | strains: max rel. diff | broken M/I/A (ADR; implicit) |", "|" + "---|" * 11]
+    for row in rows:
+        ad, im = row["adr"], row["implicit"]
+
+        def broken(r):
+            return "/".join(str(r["per_kind"][k]["broken"][-1]) for k in ("MORTAR", "ITZ", "AGG")) if r["per_kind"] else "-"
+        lines.append(f"| {row['case']} | {im['n_particles']} | {ad['wall_s']:.1f} | {im['wall_s']:.1f} | {row.get('wall_ratio', float('nan')):.1f} | "
+                     f"{ad['iterations']} | {im['iterations']} | {ad['peak_MB']:.0f} / {im['peak_MB']:.0f} | "
+                     f"{row.get('force_agreement', float('nan')):.1e} | {row.get('strain_agreement', float('nan')):.1e} | "
+                     f"{broken(ad)}; {broken(im)} |")
+    table = "\n".join(lines)
+    print(table)
+    with open(os.path.join(a.out, "solvers.json"), "w") as f:
+        json.dump(rows, f, indent=1)
+    with open(os.path.join(a.out, "solvers.md"), "w") as f:
+        f.write(table + "\n")
+
+
+if __name__ == "__main__":
+    main()
