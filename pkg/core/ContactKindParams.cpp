@@ -38,7 +38,7 @@ bool ContactKindParams::operator==(const ContactKindParams& o) const
 #define SWELLDEM_KIND_SAME(type, name, member, def, doc) && member == o.member
     return behaviour == o.behaviour && interiorTime == o.interiorTime && swellingStrainInf == o.swellingStrainInf &&
            referenceTemperature == o.referenceTemperature && Uc == o.Uc && UL == o.UL && b3.n == o.b3.n &&
-           b3.m == o.b3.m && b3.lambda0 == o.b3.lambda0 && b3.elasticLag == o.b3.elasticLag &&
+           b3.m == o.b3.m && b3.lambda0 == o.b3.lambda0 &&
            chain.order == o.chain.order && chain.richardson == o.chain.richardson &&
            chain.marginBelow == o.chain.marginBelow &&
            chain.marginAbove == o.chain.marginAbove SWELLDEM_KIND_PARAMETERS(SWELLDEM_KIND_SAME);

@@ -25,6 +25,8 @@
     X(double, q2, b3.q2, 108.1e-12, "B3 aging viscoelastic compliance q2 [1/Pa]")                                          \
     X(double, q3, b3.q3, 44.2e-12, "B3 non-aging viscoelastic compliance q3 [1/Pa]")                                       \
     X(double, q4, b3.q4, 14.3e-12, "B3 flow compliance q4 [1/Pa]")                                                         \
+    X(double, elasticLag, b3.elasticLag, 0.01,                                                                            \
+      "Load duration of the static modulus E(t) = 1/J(t + elasticLag, t) of 'aging-elastic' kinds [day]")                 \
     X(double, kelvinUnitsPerDecade, chain.unitsPerDecade, 1.0,                                                            \
       "Kelvin units per decade of retardation time (cost against accuracy) [1/decade]")                                    \
     X(bool, swelling, swelling, false, "Evaluate swelling kinetics for this kind (set when any of its contacts swells) [-]") \
