@@ -95,6 +95,7 @@ void ContactLaw::beginContactStep(const ContactGeometry& g, ContactState& s) con
         s.duOffsetS += L * SolidificationCreep::inelasticStrainIncrement(factors_, sigmaS, s.gammaShear());
     }
     s.trial = s.committed;
+    s.shearStep = 0;
 }
 
 const ContactForces& ContactLaw::trial(const ContactGeometry& g, ContactState& s, double duN, double duS) const
@@ -107,6 +108,15 @@ const ContactForces& ContactLaw::update(const ContactGeometry& g, ContactState& 
 {
     s.opening = opening;
     return settle(g, s, s.committed.FnHat + s.kn * ((opening - s.openingRef) - s.duOffsetN), FsTrial, breakNow);
+}
+
+const ContactForces& ContactLaw::updateFromStepStart(const ContactGeometry& g, ContactState& s, double opening,
+                                                     double dShear, bool breakNow) const
+{
+    s.opening = opening;
+    s.shearStep += dShear;
+    return settle(g, s, s.committed.FnHat + s.kn * ((opening - s.openingRef) - s.duOffsetN),
+                  s.committed.Fs + s.ks * (s.shearStep - s.duOffsetS), breakNow);
 }
 
 const ContactForces& ContactLaw::settle(const ContactGeometry& g, ContactState& s, double FnHat, double FsTrial,

@@ -69,6 +69,13 @@ public:
     /// breakIfOverloaded). Returns s.trial.
     const ContactForces& update(const ContactGeometry& g, ContactState& s, double opening, double FsTrial,
                                 bool breakNow) const;
+    /// The same, for a solver that gives the shear as a displacement increment dShear [m] of the
+    /// iteration: the trial shear force is taken from the step's start, Fs = committed.Fs +
+    /// ks'' (shearStep - du''_s), so that a broken contact's slip is decided by the state reached,
+    /// not by the path of the iterations (the return mapping of implicit codes); slip becomes
+    /// permanent at commit.
+    const ContactForces& updateFromStepStart(const ContactGeometry& g, ContactState& s, double opening, double dShear,
+                                             bool breakNow) const;
     /// At equilibrium: breaks an intact contact of a damaging kind whose trial forces exceed its
     /// strength; returns whether it broke. Its forces follow at the next update.
     bool breakIfOverloaded(const ContactGeometry& g, ContactState& s) const;

@@ -35,6 +35,7 @@ struct ContactState {
     // normal opening (centre distance minus the radii; the caller's measure) [m]:
     double openingRef = 0;  ///< at the end of the last converged step (at creation: stress-free)
     double opening = 0;     ///< in the current trial
+    double shearStep = 0;   ///< relative tangential displacement since the step's start [m] (ContactLaw::updateFromStepStart)
 
     double* gammaNormal() { return gamma.data(); }
     double* gammaShear() { return gamma.data() + gamma.size() / 2; }

@@ -31,6 +31,9 @@ public:
 	X(long, stepSerial, 0, swelldem_attr::Result, "Physical steps begun on this kind; a contact sets itself up for a step when its own differs [-]")    \
 	X(bool, breaksAtEquilibrium, false, swelldem_attr::Result,                                                                                           \
 	  "Set by the log-time solvers: intact contacts break only at equilibrium; false under other integrators: the law breaks at once [-]")            \
+	X(bool, shearFromStepStart, false, swelldem_attr::Result,                                                                                           \
+	  "Set by ImplicitLogTimeSolver: the shear force is taken from the step's start (a broken contact's slip is decided by the state reached, "  \
+	  "not by the iterations' path); false: YADE's incremental shear vector, whose slip is permanent at every iteration [-]")                      \
 	X(Real, shortestLag, 1e-2, swelldem_attr::Result, "Shortest load duration the Kelvin chain resolves (set by the log-time solvers: first step) [day]") \
 	X(Real, longestLag, 1e5, swelldem_attr::Result, "Longest load duration the Kelvin chain resolves (set by the log-time solvers: the run span) [day]") \
 	X(Real, stepStart, 0.0, swelldem_attr::Internal, "Start of the physical step the law has begun (0: none) [day]")                                  \

@@ -76,6 +76,8 @@ ImplicitLogTimeSolver::ImplicitLogTimeSolver()
 	maxIterations  = 5000;
 	colliderPeriod = 1;
 	iterationName  = "Newton";
+	// Newton needs a residual that depends on the state reached, not on the iterations' path
+	shearFromStepStart = true;
 }
 
 ImplicitLogTimeSolver::~ImplicitLogTimeSolver() { }

@@ -44,21 +44,29 @@ bool Law2_ScGeom_SwellPhys_AgingSwelling::go(shared_ptr<IGeom>& ig, shared_ptr<I
 			beginContactStep(*p, geom->normal);
 		}
 		core::ContactState& s = p->state;
-		// Shear: YADE's incremental vector, carried into the current contact plane.
-		Vector3r sh = p->shearForce;
-		geom->rotate(sh);
-		sh -= s.ks * geom->shearIncrement();
-		const Real                 FsTrial   = -sh.dot(tangentOf(geom->normal));
-		const bool                 wasBroken = s.trial.broken;
-		const core::ContactForces& f = kind.law().update(p->geometry(), s, -geom->penetrationDepth, FsTrial, !kind.breaksAtEquilibrium);
-		if (f.broken && !wasBroken) {
+		const bool          wasBroken = s.trial.broken;
+		const Vector3r      t         = tangentOf(geom->normal);
+		Vector3r            sh;
+		const core::ContactForces* f;
+		if (kind.shearFromStepStart) {
+			f  = &kind.law().updateFromStepStart(p->geometry(), s, -geom->penetrationDepth, geom->shearIncrement().dot(t), !kind.breaksAtEquilibrium);
+			sh = -f->Fs * t;
+		} else {
+			// Shear: YADE's incremental vector, carried into the current contact plane.
+			sh = p->shearForce;
+			geom->rotate(sh);
+			sh -= s.ks * geom->shearIncrement();
+			const Real FsTrial = -sh.dot(t);
+			f                  = &kind.law().update(p->geometry(), s, -geom->penetrationDepth, FsTrial, !kind.breaksAtEquilibrium);
+			if (f->broken && FsTrial != 0) sh *= f->Fs / FsTrial; // slip beyond the Coulomb cone is permanent
+		}
+		if (f->broken && !wasBroken) {
 #pragma omp atomic
 			++kind.breakEvents;
 #pragma omp atomic
 			++nBreaks;
 		}
-		if (f.broken && FsTrial != 0) sh *= f.Fs / FsTrial; // slip beyond the Coulomb cone is permanent
-		p->normalForce = -f.Fn * geom->normal;
+		p->normalForce = -f->Fn * geom->normal;
 		p->shearForce  = sh;
 	} catch (const std::exception& e) {
 		recordFunctorError(string(e.what()) + " (contact of bodies " + std::to_string(I->getId1()) + " and " + std::to_string(I->getId2()) + ")");

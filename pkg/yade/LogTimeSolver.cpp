@@ -96,8 +96,10 @@ void LogTimeSolver::refreshKinds()
 		if (L[i]->isReal())
 			if (auto* p = dynamic_cast<SwellPhys*>(L[i]->phys.get())) found.insert(p->kind.get());
 	kinds.assign(found.begin(), found.end());
-	for (ContactKind* k : kinds)
+	for (ContactKind* k : kinds) {
 		k->breaksAtEquilibrium = true;
+		k->shearFromStepStart  = shearFromStepStart;
+	}
 }
 
 long LogTimeSolver::breakEvents() const

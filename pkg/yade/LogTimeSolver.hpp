@@ -99,6 +99,7 @@ protected:
 	static const unsigned kNeed2D = State::DOF_Z | State::DOF_RX | State::DOF_RY;
 	std::vector<ContactKind*> kinds;              // the kinds of the scene's contacts, refreshed when contacts come or go
 	const char*               iterationName = "ADR"; // what one iteration is, for the progress lines
+	bool                      shearFromStepStart = false; // ContactKind.shearFromStepStart of the solver's kinds
 
 private:
 	void   initialize();

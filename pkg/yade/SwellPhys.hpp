@@ -30,6 +30,7 @@ template <class Archive> void serialize(Archive& ar, swelldem::core::ContactStat
 	ar& make_nvp("duOffsetS", s.duOffsetS);
 	ar& make_nvp("openingRef", s.openingRef);
 	ar& make_nvp("opening", s.opening);
+	ar& make_nvp("shearStep", s.shearStep);
 }
 } // namespace boost::serialization
 BOOST_CLASS_IMPLEMENTATION(swelldem::core::ContactForces, boost::serialization::object_serializable)
