@@ -90,6 +90,10 @@ class SwellingTest:
             _bad("behaviour", self.behaviour, ", ".join(BEHAVIOURS))
         if self.parameters not in PARAMETERS:
             _bad("parameters", self.parameters, ", ".join(PARAMETERS))
+        if self.solver == "implicit" and self.damage:
+            # measured: during heavy cracking the implicit solver's active set of broken contacts does
+            # not settle (6 of 8 runs at 40 mm stopped), docs/performance.md section 1b
+            _bad("solver", "implicit (with damage on)", "adr for runs with damage; implicit with --no-damage")
         if len(self.size_mm) != 2 or not all(0 < s < math.inf for s in self.size_mm):
             _bad("size_mm", self.size_mm, "two finite lengths > 0 [mm]")
         if not (isinstance(self.seed, int) and self.seed >= 0):
