@@ -15,6 +15,11 @@ LABEL = {"isr": "ISR", "asr-fine": "ASR-fine agg.", "asr-coarse": "ASR-coarse ag
 COLORS = {"MORTAR": "tab:blue", "ITZ": "tab:red", "AGG": "tab:green"}
 
 
+
+def _iteration_name(res):
+    """What one iteration of the run's solver is (results.json 'solver')."""
+    return "Newton" if res.get("solver") == "implicit" else "ADR"
+
 def _plt():
     import matplotlib
     matplotlib.use("Agg")
@@ -53,7 +58,7 @@ def write_tables(out, res):
     sx, sy = res["swelling_strain_x"], res["swelling_strain_y"]
     if sx:
         lines += ["", f"Final swelling strain: x {sx[-1] * 1e6:.0f}e-6, y {sy[-1] * 1e6:.0f}e-6. "
-                      f"{res['n_particles']} particles, ADR iterations {res['adr_iterations']}, wall {res['wall_s']:.1f} s."]
+                      f"{res['n_particles']} particles, {_iteration_name(res)} iterations {res['adr_iterations']}, wall {res['wall_s']:.1f} s."]
     with open(os.path.join(out, "table.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
     return rows
@@ -83,7 +88,7 @@ def plot_curves(out, res):
     ax.legend(fontsize=8)
     ax2 = ax.twinx()
     ax2.plot(np.arange(1, len(t) + 1), res["adr_iterations_per_step"], "-", color="gray", lw=1)
-    ax2.set_ylabel("ADR iterations per step", color="gray")
+    ax2.set_ylabel(f"{_iteration_name(res)} iterations per step", color="gray")
     ax.set(xlabel="physical step", ylabel="unbalanced-force ratio", title=title)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "unbalanced.png"), dpi=120)
