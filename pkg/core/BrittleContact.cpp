@@ -19,31 +19,4 @@ void BrittleStrength::validate() const
             residualFrictionAngle, "0 <= phi_res < pi/2");
 }
 
-double BrittleContact::maxTension(const BrittleStrength& s, double area) { return s.tensileStrength * area; }
-
-double BrittleContact::shearCapacityIntact(const BrittleStrength& s, double area, double Fn)
-{
-    return s.cohesion * area + std::tan(s.frictionAngle) * std::max(-Fn, 0.0);
-}
-
-double BrittleContact::shearCapacityBroken(const BrittleStrength& s, double Fn)
-{
-    return std::tan(s.residualFrictionAngle) * std::max(-Fn, 0.0);
-}
-
-FailureMode BrittleContact::check(const BrittleStrength& s, double area, double Fn, double shearMagnitude)
-{
-    if (!s.damage) return FailureMode::None;
-    if (Fn > maxTension(s, area)) return FailureMode::Tension;
-    if (s.shearFailure && std::fabs(shearMagnitude) > shearCapacityIntact(s, area, Fn)) return FailureMode::Shear;
-    return FailureMode::None;
-}
-
-void BrittleContact::brokenForces(const BrittleStrength& s, double FnHat, double FsTrial, double& Fn, double& Fs)
-{
-    Fn = std::min(FnHat, 0.0);
-    const double cap = shearCapacityBroken(s, Fn);
-    Fs = std::clamp(FsTrial, -cap, cap);
-}
-
 }  // namespace swelldem::core

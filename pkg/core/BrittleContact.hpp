@@ -5,6 +5,9 @@
 // Pure functions on scalars; forces in N, areas in m2, stresses in Pa, angles in rad.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 namespace swelldem::core {
 
 enum class FailureMode { None, Tension, Shear };
@@ -22,17 +25,35 @@ struct BrittleStrength {
 
 class BrittleContact {
 public:
+    // Inline: evaluated for every contact at every iteration.
     /// Largest tensile normal force f_t A [N].
-    static double maxTension(const BrittleStrength& s, double area);
+    static double maxTension(const BrittleStrength& s, double area) { return s.tensileStrength * area; }
     /// Shear capacity of an intact contact, c A + tan(phi) max(-Fn, 0) [N].
-    static double shearCapacityIntact(const BrittleStrength& s, double area, double Fn);
+    static double shearCapacityIntact(const BrittleStrength& s, double area, double Fn)
+    {
+        return s.cohesion * area + std::tan(s.frictionAngle) * std::max(-Fn, 0.0);
+    }
     /// Shear capacity of a broken contact, tan(phi_res) max(-Fn, 0) [N].
-    static double shearCapacityBroken(const BrittleStrength& s, double Fn);
+    static double shearCapacityBroken(const BrittleStrength& s, double Fn)
+    {
+        return std::tan(s.residualFrictionAngle) * std::max(-Fn, 0.0);
+    }
     /// Whether an intact contact carrying (Fn, |Fs|) breaks, and how (tension checked first).
-    static FailureMode check(const BrittleStrength& s, double area, double Fn, double shearMagnitude);
+    static FailureMode check(const BrittleStrength& s, double area, double Fn, double shearMagnitude)
+    {
+        if (!s.damage) return FailureMode::None;
+        if (Fn > maxTension(s, area)) return FailureMode::Tension;
+        if (s.shearFailure && std::fabs(shearMagnitude) > shearCapacityIntact(s, area, Fn)) return FailureMode::Shear;
+        return FailureMode::None;
+    }
     /// Forces a broken contact transmits for unclamped trial forces (FnHat, FsTrial):
     /// Fn = min(FnHat, 0), Fs = FsTrial clamped to +-shearCapacityBroken(Fn).
-    static void brokenForces(const BrittleStrength& s, double FnHat, double FsTrial, double& Fn, double& Fs);
+    static void brokenForces(const BrittleStrength& s, double FnHat, double FsTrial, double& Fn, double& Fs)
+    {
+        Fn = std::min(FnHat, 0.0);
+        const double cap = shearCapacityBroken(s, Fn);
+        Fs = std::clamp(FsTrial, -cap, cap);
+    }
 };
 
 }  // namespace swelldem::core

@@ -103,47 +103,6 @@ const ContactForces& ContactLaw::trial(const ContactGeometry& g, ContactState& s
     return settle(g, s, s.committed.FnHat + s.kn * (duN - s.duOffsetN), s.committed.Fs + s.ks * (duS - s.duOffsetS), true);
 }
 
-const ContactForces& ContactLaw::update(const ContactGeometry& g, ContactState& s, double opening, double FsTrial,
-                                        bool breakNow) const
-{
-    s.opening = opening;
-    return settle(g, s, s.committed.FnHat + s.kn * ((opening - s.openingRef) - s.duOffsetN), FsTrial, breakNow);
-}
-
-const ContactForces& ContactLaw::updateFromStepStart(const ContactGeometry& g, ContactState& s, double opening,
-                                                     double dShear, bool breakNow) const
-{
-    s.opening = opening;
-    s.shearStep += dShear;
-    return settle(g, s, s.committed.FnHat + s.kn * ((opening - s.openingRef) - s.duOffsetN),
-                  s.committed.Fs + s.ks * (s.shearStep - s.duOffsetS), breakNow);
-}
-
-const ContactForces& ContactLaw::settle(const ContactGeometry& g, ContactState& s, double FnHat, double FsTrial,
-                                        bool breakNow) const
-{
-    ContactForces& tr = s.trial;
-    tr.FnHat = FnHat;
-    if (!tr.broken) {
-        tr.Fn = FnHat;
-        tr.Fs = FsTrial;
-        if (!breakNow || !breakIfOverloaded(g, s)) return tr;
-    }
-    BrittleContact::brokenForces(p_.strength, FnHat, FsTrial, tr.Fn, tr.Fs);
-    return tr;
-}
-
-bool ContactLaw::breakIfOverloaded(const ContactGeometry& g, ContactState& s) const
-{
-    ContactForces& tr = s.trial;
-    if (tr.broken) return false;
-    const FailureMode m = BrittleContact::check(p_.strength, g.area, tr.FnHat, tr.Fs);
-    if (m == FailureMode::None) return false;
-    tr.broken = true;
-    tr.mode = m;
-    return true;
-}
-
 ContactLaw::Mode ContactLaw::mode(const ContactState& s) const
 {
     const ContactForces& tr = s.trial;

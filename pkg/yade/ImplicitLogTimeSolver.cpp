@@ -57,7 +57,7 @@ namespace {
 		const Mode m = sp->kind->law().mode(sp->state);
 		if (m != Mode::Intact) {
 			// side: 2 open, +-1 sliding on either side of the cone, 3 sticking
-			const int   now = m == Mode::Open ? 2 : (m == Mode::Sticking ? 3 : (sp->state.trial.Fs > 0 ? 1 : -1));
+			const int         now = m == Mode::Open ? 2 : (m == Mode::Sticking ? 3 : (sp->state.trial.Fs > 0 ? 1 : -1));
 			const bool        turned = side != 0 && now != side && (now == 2 || side == 2 || now == -side);
 			if (turned && turns < 2) ++turns;
 			side = now;

@@ -50,7 +50,7 @@ public:
 	               "Quasi-static log-time solver for 2D swelldem scenes with an exact equilibrium at each physical step: Newton "
 	               "iterations on YADE's own residual with a sparse Cholesky factor (CHOLMOD) of the contacts' step stiffness, "
 	               "breaks at equilibrium and an active set for broken contacts. Replaces NewtonIntegrator; put it last in "
-	               "O.engines. Defaults differ from the ADR's: tolerance 1e-10, minIterations 1, maxIterations 200, colliderPeriod 1.",
+	               "O.engines. Defaults differ from the ADR's: tolerance 1e-10, minIterations 1, maxIterations 5000 (Newton and relaxation), colliderPeriod 1.",
 	               SWELLDEM_IMPLICIT_ATTRS)
 	ImplicitLogTimeSolver();
 	virtual ~ImplicitLogTimeSolver();
