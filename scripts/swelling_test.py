@@ -24,6 +24,8 @@ try:
     res = scenario.run(test)  # the plugin's objects are made (and validate their settings) before any work
 except ValueError as e:
     sys.exit(f"swelling_test.py: {e}")
+except scenario.Interrupted as e:  # results.json says "interrupted: <signal>"; the steps done are kept
+    sys.exit(f"swelling_test.py: interrupted by {e}; results so far in {test.out}/results.json")
 print(f"swelling_test: {test.scenario} {test.behaviour} damage {'on' if test.damage else 'off'}, solver {test.solver}: "
       f"{res['n_particles']} particles, strain x {res['swelling_strain_x'][-1] * 1e6:.0f}e-6 y {res['swelling_strain_y'][-1] * 1e6:.0f}e-6, "
       f"iterations {res['adr_iterations']}, wall {res['wall_s']:.1f} s")

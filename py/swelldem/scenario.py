@@ -29,6 +29,7 @@ what it uses itself (scenario, behaviour, size, seed, the factors it applies, ou
 import ast
 import math
 import os
+import signal
 import time
 from dataclasses import MISSING, asdict, dataclass, field, fields
 
@@ -254,6 +255,23 @@ def set_swelling(test, kinds, d_inf):
             kinds[name].swellDispInf = d_inf
 
 
+class Interrupted(Exception):
+    """A stop signal (SIGTERM, Ctrl-C) reached a running swelling test; its results.json says so."""
+
+
+def _catch_stop_signals():
+    """SIGTERM and SIGINT stop the run between two chunks of iterations with Interrupted, so that
+    results.json records 'interrupted: <signal>' (a SIGKILL cannot be caught: the run is then
+    left 'running' with the time of its last step, results.json's 'updated'). Returns the
+    handlers to restore; none outside the main thread, where Python cannot set them."""
+    def stop(signum, frame):
+        raise Interrupted(signal.Signals(signum).name)
+    try:
+        return {sig: signal.signal(sig, stop) for sig in (signal.SIGTERM, signal.SIGINT)}
+    except ValueError:
+        return {}
+
+
 def run(test):
     """Runs one swelling test inside YADE; writes results.json, tables, plots and VTK into test.out.
     Order: Python checks, the plugin objects (kinds, solver: their constructors validate), then the
@@ -297,15 +315,24 @@ def run(test):
            "status": "running", "wall_s": 0.0}
     rec = recorder.StepRecorder(assembly, ys, solver, res, test.out, vtk_every=test.vtk_every)
     solver.stepHook = rec
+    handlers = _catch_stop_signals()
     try:
-        dem_scene.run_to_end(solver)  # through the module, so that a benchmark can time it
+        # short chunks: a stop signal is acted on between two of them
+        dem_scene.run_to_end(solver, chunk=100)  # through the module, so that a benchmark can time it
         res["status"] = "finished"
+    except Interrupted as e:
+        res["status"] = f"interrupted: {e}"
+        res["wall_s"] = time.time() - t0
+        report.write_results(test.out, res)
+        raise
     except Exception as e:  # noqa: BLE001 - the message goes into the results, then up
         res["status"] = f"failed: {e}"
         report.write_results(test.out, res)
         raise
     finally:
         res["wall_s"] = time.time() - t0
+        for sig, handler in handlers.items():
+            signal.signal(sig, handler)
     recorder.export_vtk(test.out)
     report.write_results(test.out, res)
     report.write_all(test.out, res, assembly, recorder.broken_contacts())

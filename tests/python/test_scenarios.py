@@ -3,8 +3,10 @@
 the output contract, the paper's qualitative findings, the comparison table, bad input."""
 import json
 import os
+import signal
 import subprocess
 import sys
+import time
 
 import pytest
 
@@ -161,3 +163,31 @@ def test_implicit_solver_agrees_with_the_adr_at_a_tight_tolerance(tmp_path, scen
         scale = max(abs(x) for x in d["fn_p05_kN"] + d["fn_p95_kN"])
         for q in ("fn_p05_kN", "fn_p95_kN"):
             assert max(abs(x - y) for x, y in zip(d[q], e[q])) <= 1e-3 * scale, (kind, q)
+
+
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT], ids=["SIGTERM", "SIGINT"])
+def test_a_stopped_run_says_so_and_keeps_its_steps(tmp_path, sig):
+    """SIGTERM or Ctrl-C during a run: results.json ends with status 'interrupted: <signal>', the
+    steps already done are kept, the process exits non-zero (without catching, SIGTERM kills the
+    process and leaves 'running')."""
+    out = tmp_path / "run"
+    p = subprocess.Popen([LAUNCHER, "-n", "-x", SCRIPT, "--size-mm", "16", "16", "--scenario", "isr", "--behaviour",
+                          "viscoelastic", "--steps-per-decade", "20", "--out", str(out)],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env={**os.environ, "SWELLDEM_BUILD_DIR": build_dir()})
+    results = out / "results.json"
+    deadline = time.time() + 300
+    while time.time() < deadline:
+        if results.exists():
+            try:
+                if len(json.loads(results.read_text())["times_days"]) >= 3:
+                    break
+            except ValueError:
+                pass
+        time.sleep(0.2)
+    p.send_signal(sig)
+    _, err = p.communicate(timeout=300)
+    res = json.loads(results.read_text())
+    assert p.returncode != 0
+    assert res["status"] == f"interrupted: {signal.Signals(sig).name}", (res["status"], err[-2000:])
+    assert len(res["times_days"]) >= 3 and len(res["times_days"]) < res.get("n_steps", 10 ** 9)
+    assert res["updated"] <= time.time()

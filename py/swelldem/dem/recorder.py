@@ -71,6 +71,7 @@ class StepRecorder:
             r["per_kind"][name]["broken"].append(int(broken[sel].sum()))
         r["adr_iterations"] = solver.totalIterations
         r["wall_s"] = time.time() - self.t0
+        r["updated"] = time.time()  # [s since the epoch] of the last step written: a killed run stays "running"
         if self.vtk_every and solver.step % self.vtk_every == 0:
             export_vtk(self.out)
         write_results(self.out, r)
