@@ -19,10 +19,7 @@ void AdrLogTimeIntegrator::action()
 		if (starting && !times.empty()) relaxation.start(scene);
 		return;
 	}
-	struct Track { // at every exit: held bodies moved since the last action
-		AdrLogTimeIntegrator* self;
-		~Track() { self->trackHeldBodies(); }
-	} track { this };
+	const TrackHeldBodiesAtExit track { this };
 	const Balance b = measureBalance();
 	// A break leaves kn, ks (and so the Gershgorin bound) as they are: only new or lost contacts
 	// and a new step's stiffness call for new masses.

@@ -161,6 +161,11 @@ void ImplicitLogTimeSolver::newtonStep()
 		S.nEq = 0; // renumber without the pins
 		for (int& e : S.dofOf)
 			if (e >= 0) e = S.nEq++;
+		// a contact's 6 equations over (x1, y1, rz1, x2, y2, rz2), -1 where held
+		auto equationsOf = [&S](const Interaction* I, int eq[6]) {
+			for (int d = 0; d < 3; ++d)
+				eq[d] = S.dofOf[3 * I->id1 + d], eq[3 + d] = S.dofOf[3 * I->id2 + d];
+		};
 		S.graph.resize(contacts.size());
 		std::vector<Eigen::Triplet<double, int>> trip;
 		trip.reserve(contacts.size() * 21 + S.nEq);
@@ -170,8 +175,7 @@ void ImplicitLogTimeSolver::newtonStep()
 			const Interaction* I = contacts[c];
 			S.graph[c]           = { I->id1, I->id2 };
 			int eq[6];
-			for (int d = 0; d < 3; ++d)
-				eq[d] = S.dofOf[3 * I->id1 + d], eq[3 + d] = S.dofOf[3 * I->id2 + d];
+			equationsOf(I, eq);
 			for (int k = 0; k < 21; ++k) {
 				const int r = eq[kPairs.a[k]], s = eq[kPairs.b[k]];
 				if (r >= 0 && s >= 0) trip.emplace_back(std::max(r, s), std::min(r, s), 0.0);
@@ -190,10 +194,8 @@ void ImplicitLogTimeSolver::newtonStep()
 		for (int e = 0; e < S.nEq; ++e)
 			S.diagSlot[e] = slotOf(e, e);
 		for (size_t c = 0; c < contacts.size(); ++c) {
-			const Interaction* I = contacts[c];
-			int                eq[6];
-			for (int d = 0; d < 3; ++d)
-				eq[d] = S.dofOf[3 * I->id1 + d], eq[3 + d] = S.dofOf[3 * I->id2 + d];
+			int eq[6];
+			equationsOf(contacts[c], eq);
 			for (int k = 0; k < 21; ++k) {
 				const int r = eq[kPairs.a[k]], s = eq[kPairs.b[k]];
 				if (r >= 0 && s >= 0) S.slots[21 * c + k] = slotOf(std::max(r, s), std::min(r, s));
@@ -217,15 +219,20 @@ void ImplicitLogTimeSolver::newtonStep()
 		contactSide.assign(contacts.size(), 0);
 		contactTurns.assign(contacts.size(), 0);
 	}
-	long changes = 0;
+	long              changes = 0;
+	double            kScale  = 0;                      // mean step stiffness kn'' of the contacts
+	std::vector<Real> radius(bodies.size(), 0.0);      // from the contacts' geometry (the shape is not declared here)
 	for (size_t c = 0; c < contacts.size(); ++c) {
 		const Interaction* I = contacts[c];
-		Real               kn, ks;
-		const char         state = contactTangent(I, contactSide[c], contactTurns[c], kn, ks);
+		const auto*        g = static_cast<const ScGeom*>(I->geom.get());
+		kScale += std::abs(static_cast<const NormShearPhys*>(I->phys.get())->kn);
+		radius[I->id1] = std::max(radius[I->id1], g->radius1);
+		radius[I->id2] = std::max(radius[I->id2], g->radius2);
+		Real       kn, ks;
+		const char state = contactTangent(I, contactSide[c], contactTurns[c], kn, ks);
 		changes += state != S.active[c];
 		S.active[c] = state;
 		if (kn == 0 && ks == 0) continue;
-		const auto*    g = static_cast<const ScGeom*>(I->geom.get());
 		const Vector3r& n = g->normal;
 		const Real      r1 = g->radius1 - 0.5 * g->penetrationDepth, r2 = g->radius2 - 0.5 * g->penetrationDepth;
 		const Real      bn[6] = { -n[0], -n[1], 0, n[0], n[1], 0 };
@@ -237,9 +244,6 @@ void ImplicitLogTimeSolver::newtonStep()
 	activeChanges = changes;
 	// A DOF that no contact holds in the current state (a loose disc, a disc whose contacts are all
 	// open) moves under its own load as if one typical contact held it, so that it can close them.
-	double kScale = 0;
-	for (const Interaction* I : contacts)
-		kScale += std::abs(static_cast<const NormShearPhys*>(I->phys.get())->kn);
 	kScale = contacts.empty() ? 1.0 : kScale / contacts.size();
 	for (int e = 0; e < S.nEq; ++e) {
 		double& d = v[S.diagSlot[e]];
@@ -268,12 +272,6 @@ void ImplicitLogTimeSolver::newtonStep()
 	}
 	const Eigen::VectorXd du = S.chol.solve(r);
 	if (!du.allFinite()) fail("the linear solve gave a non-finite displacement");
-	std::vector<Real> radius(bodies.size(), 0.0); // from the contacts' geometry (the shape is not declared here)
-	for (const Interaction* I : contacts) {
-		const auto* g   = static_cast<const ScGeom*>(I->geom.get());
-		radius[I->id1] = std::max(radius[I->id1], g->radius1);
-		radius[I->id2] = std::max(radius[I->id2], g->radius2);
-	}
 	const Real dt = scene->dt;
 	for (const auto& b : bodies) {
 		if (!b) continue;
@@ -304,10 +302,7 @@ void ImplicitLogTimeSolver::action()
 {
 	if (!startIteration()) return;
 	const Balance b = measureBalance();
-	struct Track { // at every exit: held bodies moved since the last action
-		ImplicitLogTimeSolver* self;
-		~Track() { self->trackHeldBodies(); }
-	} track { this };
+	const TrackHeldBodiesAtExit track { this };
 	const StepOutcome out = settleStep(b, b.ratio <= tolerance || b.atRoundOff);
 	if (out != StepOutcome::Continue || iterInStep == 1) relaxing = false, newtonSince = iterInStep, relaxPhase = 0;
 	if (out == StepOutcome::Committed) return;
@@ -323,6 +318,7 @@ void ImplicitLogTimeSolver::action()
 	}
 	if (relaxing) {
 		if (b.ratio > relaxTolerance * std::pow(1e-2, relaxPhase - 1)) {
+			// the ADR's default massSafety (1) and maxDamping (1.8)
 			if (b.nReal != relax.nContactsSeen) relax.computeMasses(scene, 1.0);
 			relax.leapfrog(scene, relax.damping(scene, 1.8));
 			++relaxationIterations;

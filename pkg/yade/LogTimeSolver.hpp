@@ -94,6 +94,11 @@ protected:
 	/// stepHook or between O.run calls) gets the velocity of that move for one pass, so that YADE's
 	/// contact geometry, which integrates the shear from velocities, sees it as a displacement.
 	void trackHeldBodies();
+	/// Calls trackHeldBodies() at every exit of an action() after startIteration().
+	struct TrackHeldBodiesAtExit {
+		LogTimeSolver* self;
+		~TrackHeldBodiesAtExit() { self->trackHeldBodies(); }
+	};
 	[[noreturn]] void fail(const string& why) const;
 	static void       zeroVelocities(Scene* scene);
 	static const unsigned kNeed2D = State::DOF_Z | State::DOF_RX | State::DOF_RY;
