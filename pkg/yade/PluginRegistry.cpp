@@ -9,6 +9,9 @@
 #include "Law2_ScGeom_SwellPhys_AgingSwelling.hpp"
 #include "SwellPhys.hpp"
 #include "SwelldemAbiProbe.hpp"
+#include "compat/YadeBuildCheck.hpp"
+
+#include <iostream>
 
 #define SWELLDEM_PLUGIN_CLASSES(X)                                                                                                                             \
 	X(ConcreteMat)                                                                                                                                         \
@@ -28,6 +31,16 @@ SWELLDEM_PLUGIN_CLASSES(SWELLDEM_REGISTER)
 
 __attribute__((constructor)) static void announceSwelldemClasses()
 {
+	// Announcing the classes to a YADE whose binary layout is not the one the declarations were
+	// checked against would let Python build objects that YADE reads at the wrong offsets; the plugin
+	// stays silent instead, and says why once.
+	const std::string mismatch = swelldem_compat::yadeBuildMismatch(SWELLDEM_YADE_BUILD_IDS);
+	if (!mismatch.empty()) {
+		std::cerr << "swelldem: refusing to load: the running YADE is not the build this plugin was compiled for (" << mismatch
+		          << "YADE was upgraded or replaced after the build). The plugin's classes are not available; rebuild: bash scripts/setup.sh"
+		          << std::endl;
+		return;
+	}
 #define SWELLDEM_NAME(C) #C,
 	static const char* fileAndClasses[] = { __FILE__, SWELLDEM_PLUGIN_CLASSES(SWELLDEM_NAME) nullptr };
 #undef SWELLDEM_NAME

@@ -2,6 +2,7 @@
 """The launcher behaves like `yade` with the plugin loaded; YADE's own self-test passes with the
 plugin loaded; the build refuses a YADE whose feature set differs from the declarations'."""
 import os
+import shutil
 import subprocess
 
 from conftest import LAUNCHER, REPO, build_dir, plugin_classes
@@ -50,3 +51,44 @@ def test_build_refuses_unexpected_yade_features(tmp_path):
     assert p.returncode != 0
     assert "refusing to build against this YADE" in p.stderr
     assert "present in this YADE but not expected: CGAL" in p.stderr
+
+
+def _overlay_with_plugin(tmp_path, patch=None):
+    """A copy of the build's overlay prefix whose plugin file is a real copy, optionally patched."""
+    src = os.path.join(build_dir(), "prefix")
+    dst = tmp_path / "build" / "prefix"
+    shutil.copytree(src, dst, symlinks=True)
+    plugin = dst / "lib/x86_64-linux-gnu/yade-double/swelldem/libswelldem.so"
+    data = open(os.path.realpath(os.path.join(src, "lib/x86_64-linux-gnu/yade-double/swelldem/libswelldem.so")), "rb").read()
+    plugin.unlink()
+    plugin.write_bytes(patch(data) if patch else data)
+    return tmp_path / "build"
+
+
+def _build_id(lib):
+    out = subprocess.run(["readelf", "-n", lib], capture_output=True, text=True, check=True).stdout
+    return out.split("Build ID:")[1].split()[0]
+
+
+def test_plugin_refuses_other_yade_build(tmp_path):
+    """A YADE replaced after the build (simulated by changing the libyade.so build id recorded in a
+    copy of the plugin, the one thing a new build of YADE certainly changes) is refused when the
+    plugin loads, with a message; the unpatched copy loads."""
+    real_id = _build_id("/usr/lib/x86_64-linux-gnu/yade-double/libyade.so")
+    other_id = "".join("0" if c != "0" else "1" for c in real_id)
+    marker = b"libyade.so:" + real_id.encode()
+
+    def patch(data):
+        assert data.count(marker) == 1, "the plugin does not record libyade.so's build id"
+        return data.replace(marker, b"libyade.so:" + other_id.encode())
+
+    script = tmp_path / "probe.py"
+    script.write_text("from yade import wrapper\nprint('LOADED', hasattr(wrapper, 'ContactKind'))\n")
+    good = _launch("-n", "-x", str(script), env={"SWELLDEM_BUILD_DIR": str(_overlay_with_plugin(tmp_path / "good"))})
+    assert "LOADED True" in good.stdout, good.stderr[-2000:]
+    assert "refusing to load" not in good.stderr
+    bad = _launch("-n", "-x", str(script), env={"SWELLDEM_BUILD_DIR": str(_overlay_with_plugin(tmp_path / "bad", patch))})
+    assert "LOADED False" in bad.stdout, bad.stdout[-2000:] + bad.stderr[-2000:]
+    assert "swelldem: refusing to load" in bad.stderr
+    assert f"has build id {real_id}, the plugin was built against build id {other_id}" in bad.stderr
+    assert "scripts/setup.sh" in bad.stderr
