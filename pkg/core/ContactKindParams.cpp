@@ -40,8 +40,7 @@ bool ContactKindParams::operator==(const ContactKindParams& o) const
            referenceTemperature == o.referenceTemperature && Uc == o.Uc && UL == o.UL && b3.n == o.b3.n &&
            b3.m == o.b3.m && b3.lambda0 == o.b3.lambda0 &&
            chain.order == o.chain.order && chain.richardson == o.chain.richardson &&
-           chain.marginBelow == o.chain.marginBelow &&
-           chain.marginAbove == o.chain.marginAbove SWELLDEM_KIND_PARAMETERS(SWELLDEM_KIND_SAME);
+           chain.marginBelow == o.chain.marginBelow SWELLDEM_KIND_PARAMETERS(SWELLDEM_KIND_SAME);
 #undef SWELLDEM_KIND_SAME
 }
 

@@ -29,6 +29,9 @@
       "Load duration of the static modulus E(t) = 1/J(t + elasticLag, t) of 'aging-elastic' kinds [day]")                 \
     X(double, kelvinUnitsPerDecade, chain.unitsPerDecade, 1.0,                                                            \
       "Kelvin units per decade of retardation time (cost against accuracy) [1/decade]")                                    \
+    X(double, kelvinMarginAbove, chain.marginAbove, 2.0,                                                                  \
+      "Decades of retardation times beyond the run's longest load duration t_end - t_start: the chain's slowest unit "     \
+      "is >= that duration x 10^margin, so creep late in the run is not cut off by a missing unit (0..6) [decade]")      \
     X(bool, swelling, swelling, false, "Evaluate swelling kinetics for this kind (set when any of its contacts swells) [-]") \
     X(double, swellDispInf, swellingDisplacementInf, 0.0,                                                                 \
       "Ultimate free swelling displacement d_inf of the kind's contacts (0: none; per-contact override "                  \

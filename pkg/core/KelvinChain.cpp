@@ -111,7 +111,7 @@ void KelvinChainOptions::validate() const
             "integer 1 <= order <= " + std::to_string(maxOrder) +
                 (richardson ? " (with Richardson extrapolation)" : ""));
     requireNonNegative("marginBelow [decades]", marginBelow);
-    requireNonNegative("marginAbove [decades]", marginAbove);
+    require(marginAbove >= 0 && marginAbove <= 6, "kelvinMarginAbove [decades]", marginAbove, "0 <= kelvinMarginAbove <= 6");
 }
 
 double KelvinChain::spectrum(double tau, double q2, double n, double lambda0, int order, bool richardson)

@@ -20,7 +20,7 @@ struct KelvinChainOptions {
     int order = 2;                ///< Post-Widder order k, 1..4 (1..8 without Richardson)
     bool richardson = true;       ///< use 2 L_2k - L_k instead of L_k
     double marginBelow = 1.0;     ///< forAnalysis: tau_1 <= shortestLag / 10^marginBelow [decades]
-    double marginAbove = 1.0;     ///< forAnalysis: tau_N >= longestLag * 10^marginAbove [decades]
+    double marginAbove = 2.0;     ///< forAnalysis: tau_N >= longestLag * 10^marginAbove [decades] (ContactKind.kelvinMarginAbove)
     void validate() const;
 };
 

@@ -68,7 +68,7 @@ TEST(B3Compliance, BazantApproximationOfQAgainstExactIntegral)
         else EXPECT_LT(worst, 0.10);  // t' < 1 d: outside the fit's intended range
     }
     std::printf("[Q approx vs exact integral] t' >= 1 d, t - t' = 1e-3..1e5 d: largest %.3f %%\n", 100 * worstAll);
-    EXPECT_LT(worstAll, 0.01);
+    EXPECT_LT(worstAll, 0.008);  // measured 0.542 %: margin 1.5x
 }
 
 // The reference quadrature itself: Q at constant 1/v would be t'^-m Phi(lag); check limits.

@@ -139,8 +139,9 @@ TEST(ContactLaw, ViscoelasticRestrainedSwellingAgainstVolterra)
         std::printf("[restrained swelling tau_c = %g d] end force %.1f N (Volterra %.1f N): end error %.3f %%, "
                     "history error %.3f %% of max |F|\n",
                     tc, F.back(), sig.back() * kGeom.area, 100 * endErr, 100 * worst);
-        EXPECT_LT(endErr, 0.02);
-        EXPECT_LT(worst, 0.02);
+        // measured end 0.100 % (ISR), 0.212 % (ASR); history 0.294 %, 0.355 %: margins 1.4x
+        EXPECT_LT(endErr, 0.003);
+        EXPECT_LT(worst, 0.005);
     }
 }
 

@@ -53,7 +53,7 @@ TEST(Extremes, VeryEarlyLoadingAge)
         worst = std::max(worst, std::fabs(J[i] / ref::jExact(ref::mortar(), times[i], tp) - 1));
     }
     std::printf("[t' = 1e-3 d] largest relative error vs exact-Q J %.2f %%\n", 100 * worst);
-    EXPECT_LT(worst, 0.05);
+    EXPECT_LT(worst, 0.03);  // measured 1.98 %: margin 1.5x
 }
 
 TEST(Extremes, StepsOfOneMicroDayAndOneHundredThousandDays)
@@ -71,7 +71,7 @@ TEST(Extremes, StepsOfOneMicroDayAndOneHundredThousandDays)
             std::printf("[t' = %g, step to t - t' = %g] relative error vs exact-Q J %.2f %%\n", tp, times[i] - tp, 100 * e);
             // micro-day steps are accurate; one single step of 1e5 d is only bounded (one t* for
             // the whole step: see docs/physics-core.md)
-            EXPECT_LT(e, i < 2 ? 0.01 : 0.5);
+            EXPECT_LT(e, i < 2 ? 0.005 : 0.5);  // measured <= 0.28 % and 37.8 % (one step of 1e5 d)
         }
     }
     // a single huge first step from a tiny age and a 1e-6 step at a late age: finite factors
@@ -93,10 +93,13 @@ TEST(Extremes, NoQ3NoQ4)
         std::vector<double> times;
         for (double lag : logTimes(0.01, 1e4, 10)) times.push_back(tp + lag);
         const auto J = creepCurve(c, tp, times);
+        double worst = 0;
         for (std::size_t i = 0; i < J.size(); ++i) {
             ASSERT_TRUE(std::isfinite(J[i]));
-            EXPECT_NEAR(J[i] / ref::jB3(r, times[i], tp), 1.0, 0.02);
+            worst = std::max(worst, std::fabs(J[i] / ref::jB3(r, times[i], tp) - 1));
         }
+        std::printf("[q3 = q4 = 0, t' = %g d] largest relative error vs B3 J %.3f %%\n", tp, 100 * worst);
+        EXPECT_LT(worst, 0.009);  // measured 0.611 %: margin 1.5x
     }
 }
 

@@ -64,7 +64,7 @@ TEST(SolidificationCreep, CreepAtConstantStressReproducesB3)
             std::printf("\n");
         }
     std::printf("  default (geometric t*, 1 unit/decade, N = 10): %.3f %%\n", 100 * worstDefault);
-    EXPECT_LT(worstDefault, 0.02);
+    EXPECT_LT(worstDefault, 0.0075);  // measured 0.497 %: margin 1.5x
 }
 
 TEST(SolidificationCreep, CreepCompliancePerAgeAtDefaultSettings)
@@ -74,7 +74,7 @@ TEST(SolidificationCreep, CreepCompliancePerAgeAtDefaultSettings)
         double lag = 0;
         const double e = creepError(c, tp, 10, &lag);
         std::printf("  t' = %5g d: largest error %.3f %% at t - t' = %g d\n", tp, 100 * e, lag);
-        EXPECT_LT(e, 0.02);
+        EXPECT_LT(e, 0.0075);  // measured 0.243-0.497 %: margin 1.5x
     }
 }
 
@@ -118,7 +118,7 @@ TEST(SolidificationCreep, RelaxationAgainstVolterra)
         std::printf("[relaxation t0 = %g d] largest relative error vs Volterra %.3f %% (reference self-check %.3f %%)\n",
                     t0, 100 * worst, 100 * refWorst);
         EXPECT_LT(refWorst, 0.003);
-        EXPECT_LT(worst, 0.02);
+        EXPECT_LT(worst, 0.0135);  // measured 0.897 % (t0 = 3 d), 0.468 % (28 d): margin 1.5x
     }
 }
 

@@ -93,7 +93,11 @@ TEST(Validation, KelvinChain)
     expectInvalid([&] { o.validate(); }, "order (Post-Widder)", "5", "1 <= order <= 4");
     o = {};
     o.marginAbove = -1;
-    expectInvalid([&] { o.validate(); }, "marginAbove [decades]", "-1", "0 <= marginAbove");
+    expectInvalid([&] { o.validate(); }, "kelvinMarginAbove [decades]", "-1", "0 <= kelvinMarginAbove <= 6");
+    o.marginAbove = 6.5;
+    expectInvalid([&] { o.validate(); }, "kelvinMarginAbove [decades]", "6.5", "0 <= kelvinMarginAbove <= 6");
+    o.marginAbove = std::nan("");
+    expectInvalid([&] { o.validate(); }, "kelvinMarginAbove [decades]", "nan", "0 <= kelvinMarginAbove <= 6");
     o = {};
     o.marginBelow = -1;
     expectInvalid([&] { o.validate(); }, "marginBelow [decades]", "-1", "0 <= marginBelow");
