@@ -10,8 +10,9 @@ namespace yade {
 class AdrLogTimeIntegrator : public LogTimeSolver {
 public:
 #define SWELLDEM_ADR_ATTRS(X)                                                                                                                                  \
-	X(Real, massSafety, 1.0, swelldem_attr::Setting, "Factor on the Gershgorin bound of the fictitious masses (>= 1) [-]")                             \
-	X(Real, maxDamping, 1.8, swelldem_attr::Setting, "Upper clamp of the ADR damping c dt (< 2) [-]")                                                 \
+	X(Real, massSafety, DynamicRelaxation::kDefaultMassSafety, swelldem_attr::Setting,                                                                     \
+	  "Factor on the Gershgorin bound of the fictitious masses (>= 1; at 1 an isolated pair of discs never settles) [-]")                                \
+	X(Real, maxDamping, DynamicRelaxation::kDefaultMaxDamping, swelldem_attr::Setting, "Upper clamp of the ADR damping c dt (< 2) [-]")                                                 \
 	X(Real, damping, 0.0, swelldem_attr::Result, "ADR damping c dt of the last iteration [-]")                                                         \
 	X(DynamicRelaxation, relaxation, DynamicRelaxation(), swelldem_attr::Internal, "Fictitious masses, previous residual and origin of the ADR [-]")
 	SWELLDEM_CLASS(AdrLogTimeIntegrator, LogTimeSolver,

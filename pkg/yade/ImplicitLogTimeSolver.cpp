@@ -318,9 +318,8 @@ void ImplicitLogTimeSolver::action()
 	}
 	if (relaxing) {
 		if (b.ratio > relaxTolerance * std::pow(1e-2, relaxPhase - 1)) {
-			// the ADR's default massSafety (1) and maxDamping (1.8)
-			if (b.nReal != relax.nContactsSeen) relax.computeMasses(scene, 1.0);
-			relax.leapfrog(scene, relax.damping(scene, 1.8));
+			if (b.nReal != relax.nContactsSeen) relax.computeMasses(scene, DynamicRelaxation::kDefaultMassSafety);
+			relax.leapfrog(scene, relax.damping(scene, DynamicRelaxation::kDefaultMaxDamping));
 			++relaxationIterations;
 			return;
 		}
