@@ -78,6 +78,10 @@ ImplicitLogTimeSolver::ImplicitLogTimeSolver()
 	iterationName  = "Newton";
 	// Newton needs a residual that depends on the state reached, not on the iterations' path
 	shearFromStepStart = true;
+	progressDetail     = [this] {
+                return " (" + std::to_string(relaxationIterations - relaxationAtStepStart) + " relaxation, "
+                       + std::to_string(factorizations - factorizationsAtStepStart) + " factorizations)";
+	};
 }
 
 ImplicitLogTimeSolver::~ImplicitLogTimeSolver() { }
@@ -301,6 +305,7 @@ void ImplicitLogTimeSolver::newtonStep()
 void ImplicitLogTimeSolver::action()
 {
 	if (!startIteration()) return;
+	if (iterInStep == 1) relaxationAtStepStart = relaxationIterations, factorizationsAtStepStart = factorizations;
 	const Balance b = measureBalance();
 	const TrackHeldBodiesAtExit track { this };
 	const StepOutcome out = settleStep(b, b.ratio <= tolerance || b.atRoundOff);

@@ -59,6 +59,7 @@ public:
 	template <class C> static void pyMethods(C&) { }
 
 private:
+	long relaxationAtStepStart = 0, factorizationsAtStepStart = 0; // for the progress line only
 	void                                  choosePins();
 	void                                  newtonStep();
 	std::unique_ptr<ImplicitLinearSystem> sys; // not saved: rebuilt from the scene, it gives the same factor

@@ -318,8 +318,8 @@ LogTimeSolver::StepOutcome LogTimeSolver::settleStep(const Balance& b, bool conv
 void LogTimeSolver::progressLine() const
 {
 	const double el = wallNow(), left = el / step * (nSteps() - step);
-	std::printf("swelldem: step %d/%d  t = %s d  %s iterations %ld (total %ld)  unbalanced %.2e  elapsed %.1f s  left ~%.1f s\n", step, nSteps(),
-	            num(physTime).c_str(), iterationName, iterInStep, totalIterations, unbalanced, el, left);
+	std::printf("swelldem: step %d/%d  t = %s d  %s iterations %ld%s (total %ld)  unbalanced %.2e  elapsed %.1f s  left ~%.1f s\n", step,
+	            nSteps(), num(physTime).c_str(), iterationName, iterInStep, (progressDetail ? progressDetail() : std::string()).c_str(), totalIterations, unbalanced, el, left);
 	std::fflush(stdout);
 }
 

@@ -9,6 +9,7 @@
 // the helpers below. Imposed displacements: move a held body (blockedDOFs x or y) by setting its
 // position, e.g. in the stepHook; constant loads: YADE's ForceEngine or O.forces.setPermF. 2D only: discs in the plane z = 0 with z translation and x, y rotations blocked.
 #pragma once
+#include <functional>
 #include "Law2_ScGeom_SwellPhys_AgingSwelling.hpp"
 #include <chrono>
 
@@ -105,6 +106,9 @@ protected:
 	std::vector<ContactKind*> kinds;              // the kinds of the scene's contacts, refreshed when contacts come or go
 	const char*               iterationName = "ADR"; // what one iteration is, for the progress lines
 	bool                      shearFromStepStart = false; // ContactKind.shearFromStepStart of the solver's kinds
+	/// What a solver adds to the progress line about its own iterations (not virtual: the vtable
+	/// must keep the size of the stock engine's, compat/abi_pairs.txt).
+	std::function<std::string()> progressDetail;
 
 private:
 	void   initialize();
