@@ -40,31 +40,24 @@ namespace {
 	};
 	const PairTable kPairs;
 
-	// A real interaction's tangent kn, ks [N/m] and its state (core::ContactLaw::Mode; 0 for a stock
-	// contact). Newton's active set can cycle: a broken contact that opens, then closes, then opens,
-	// or slides on one side of the Coulomb cone, then on the other (met on 40 mm ISR damage runs).
-	// A contact that has turned twice in a step keeps its full stiffness in the tangent for the rest
-	// of the step: the iterations then converge (linearly) to the same equilibrium, YADE's residual.
-	char contactTangent(const Interaction* I, int& side, int& turns, Real& kn, Real& ks)
+	// A real interaction's tangent and its state (core::ContactLaw::Mode; 0 for a stock contact):
+	// kn, ks [N/m] of the state the contact is in, and for a sliding contact the slope of its shear
+	// force along the Coulomb cone, slide = dFs/d(opening) = -sign(Fs) tan(phi_res) kn [N/m].
+	char contactTangent(const Interaction* I, Real& kn, Real& ks, Real& slide)
 	{
+		slide          = 0;
 		const auto* sp = dynamic_cast<const SwellPhys*>(I->phys.get());
 		if (!sp) {
 			const auto* p = static_cast<const NormShearPhys*>(I->phys.get());
 			kn = p->kn, ks = p->ks;
 			return 0;
 		}
-		using Mode = core::ContactLaw::Mode;
+		using Mode   = core::ContactLaw::Mode;
 		const Mode m = sp->kind->law().mode(sp->state);
-		if (m != Mode::Intact) {
-			// side: 2 open, +-1 sliding on either side of the cone, 3 sticking
-			const int         now = m == Mode::Open ? 2 : (m == Mode::Sticking ? 3 : (sp->state.trial.Fs > 0 ? 1 : -1));
-			const bool        turned = side != 0 && now != side && (now == 2 || side == 2 || now == -side);
-			if (turned && turns < 2) ++turns;
-			side = now;
-		}
-		const bool full = turns >= 2;
-		kn              = (m == Mode::Open && !full) ? 0 : sp->state.kn;
-		ks              = (m == Mode::Intact || m == Mode::Sticking || full) ? sp->state.ks : 0;
+		kn           = m == Mode::Open ? 0 : sp->state.kn;
+		ks           = (m == Mode::Intact || m == Mode::Sticking) ? sp->state.ks : 0;
+		if (m == Mode::Sliding)
+			slide = -(sp->state.trial.Fs > 0 ? 1 : -1) * std::tan(sp->kind->law().params().strength.residualFrictionAngle) * sp->state.kn;
 		return char(m);
 	}
 }
@@ -92,6 +85,7 @@ void ImplicitLogTimeSolver::postLoad()
 	core::require(regularization >= 0 && regularization < 1e-3, "ImplicitLogTimeSolver.regularization", regularization, "0 <= regularization < 1e-3");
 	core::require(maxMove > 0 && maxMove <= 1, "ImplicitLogTimeSolver.maxMove", maxMove, "0 < maxMove <= 1");
 	core::require(newtonLimit >= 1, "ImplicitLogTimeSolver.newtonLimit", newtonLimit, ">= 1");
+	core::require(maxSlidingExact >= 0, "ImplicitLogTimeSolver.maxSlidingExact", maxSlidingExact, ">= 0");
 	core::requireOpenInterval("ImplicitLogTimeSolver.relaxTolerance", relaxTolerance, 0, 1);
 }
 
@@ -138,6 +132,7 @@ void ImplicitLogTimeSolver::newtonStep()
 	ImplicitLinearSystem& S      = *sys;
 	const auto&           bodies = scene->bodies->body;
 	const auto&           L      = scene->interactions->linIntrs;
+	lineMove.assign(3 * bodies.size(), 0.0);
 	std::vector<const Interaction*> contacts;
 	contacts.reserve(scene->interactions->currSize);
 	for (size_t i = 0; i < scene->interactions->currSize; ++i)
@@ -219,11 +214,16 @@ void ImplicitLogTimeSolver::newtonStep()
 	//    gives the law).
 	double* v = S.K.valuePtr();
 	std::fill(v, v + S.K.nonZeros(), 0.0);
-	if (iterInStep == 1 || contactSide.size() != contacts.size()) {
-		contactSide.assign(contacts.size(), 0);
-		contactTurns.assign(contacts.size(), 0);
-	}
 	long              changes = 0;
+	// The sliding contacts' shear-normal coupling makes the tangent unsymmetric: J = K + U V^T, one
+	// column pair per sliding contact (u = slide bs, v = bn). K keeps its Cholesky factor and J is
+	// solved exactly with the Sherman-Morrison-Woodbury formula; without the coupling Newton
+	// converges only linearly, at rates up to 0.98 an iteration (measured on 20 mm ISR cracking).
+	struct SlidingCoupling {
+		int  eq[6];
+		Real u[6], v[6];
+	};
+	std::vector<SlidingCoupling> sliding;
 	double            kScale  = 0;                      // mean step stiffness kn'' of the contacts
 	std::vector<Real> radius(bodies.size(), 0.0);      // from the contacts' geometry (the shape is not declared here)
 	for (size_t c = 0; c < contacts.size(); ++c) {
@@ -232,8 +232,8 @@ void ImplicitLogTimeSolver::newtonStep()
 		kScale += std::abs(static_cast<const NormShearPhys*>(I->phys.get())->kn);
 		radius[I->id1] = std::max(radius[I->id1], g->radius1);
 		radius[I->id2] = std::max(radius[I->id2], g->radius2);
-		Real       kn, ks;
-		const char state = contactTangent(I, contactSide[c], contactTurns[c], kn, ks);
+		Real       kn, ks, slide;
+		const char state = contactTangent(I, kn, ks, slide);
 		changes += state != S.active[c];
 		S.active[c] = state;
 		if (kn == 0 && ks == 0) continue;
@@ -241,6 +241,14 @@ void ImplicitLogTimeSolver::newtonStep()
 		const Real      r1 = g->radius1 - 0.5 * g->penetrationDepth, r2 = g->radius2 - 0.5 * g->penetrationDepth;
 		const Real      bn[6] = { -n[0], -n[1], 0, n[0], n[1], 0 };
 		const Real      bs[6] = { n[1], -n[0], -r1, -n[1], n[0], -r2 };
+		if (slide != 0) {
+			SlidingCoupling sc;
+			for (int d = 0; d < 3; ++d)
+				sc.eq[d] = S.dofOf[3 * I->id1 + d], sc.eq[3 + d] = S.dofOf[3 * I->id2 + d];
+			for (int k = 0; k < 6; ++k)
+				sc.u[k] = slide * bs[k], sc.v[k] = bn[k];
+			sliding.push_back(sc);
+		}
 		const int*      slot  = &S.slots[21 * c];
 		for (int k = 0; k < 21; ++k)
 			if (slot[k] >= 0) v[slot[k]] += kn * bn[kPairs.a[k]] * bn[kPairs.b[k]] + ks * bs[kPairs.a[k]] * bs[kPairs.b[k]];
@@ -274,9 +282,30 @@ void ImplicitLogTimeSolver::newtonStep()
 		for (int d = 0; d < 3; ++d)
 			if (S.dofOf[3 * b->id + d] >= 0) r[S.dofOf[3 * b->id + d]] = val[d];
 	}
-	const Eigen::VectorXd du = S.chol.solve(r);
+	Eigen::VectorXd du = S.chol.solve(r);
+	if (!sliding.empty() && long(sliding.size()) <= maxSlidingExact) {
+		const long      m = long(sliding.size());
+		Eigen::MatrixXd U = Eigen::MatrixXd::Zero(S.nEq, m);
+		for (long j = 0; j < m; ++j)
+			for (int k = 0; k < 6; ++k)
+				if (sliding[j].eq[k] >= 0) U(sliding[j].eq[k], j) += sliding[j].u[k];
+		const Eigen::MatrixXd Z = S.chol.solve(U); // K^-1 U
+		auto vDot = [&](const SlidingCoupling& sc, const auto& x) {
+			Real s = 0;
+			for (int k = 0; k < 6; ++k)
+				if (sc.eq[k] >= 0) s += sc.v[k] * x(sc.eq[k]);
+			return s;
+		};
+		Eigen::MatrixXd Sm = Eigen::MatrixXd::Identity(m, m);
+		Eigen::VectorXd vy(m);
+		for (long i = 0; i < m; ++i) {
+			vy[i] = vDot(sliding[i], du);
+			for (long j = 0; j < m; ++j)
+				Sm(i, j) += vDot(sliding[i], Z.col(j));
+		}
+		du -= Z * Sm.partialPivLu().solve(vy);
+	}
 	if (!du.allFinite()) fail("the linear solve gave a non-finite displacement");
-	const Real dt = scene->dt;
 	for (const auto& b : bodies) {
 		if (!b) continue;
 		State*     s = b->state.get();
@@ -290,11 +319,25 @@ void ImplicitLogTimeSolver::newtonStep()
 			if (u.norm() > cap) u *= cap / u.norm();
 			if (std::abs(th) > maxMove) th = th > 0 ? maxMove : -maxMove;
 		}
+		lineMove[3 * b->id] = u[0], lineMove[3 * b->id + 1] = u[1], lineMove[3 * b->id + 2] = th;
+	}
+	moveBodies(1.0);
+}
+
+void ImplicitLogTimeSolver::moveBodies(Real fraction)
+{
+	// Through the velocities too: YADE's ScGeom takes the shear increment from them.
+	const Real dt = scene->dt;
+	for (const auto& b : scene->bodies->body) {
+		if (!b || 3 * size_t(b->id) + 2 >= lineMove.size()) continue;
+		State*     s  = b->state.get();
+		const Real* m = &lineMove[3 * b->id];
 		for (int d = 0; d < 2; ++d) {
-			s->vel[d] = u[d] / dt;
-			s->se3.position[d] += u[d];
+			s->vel[d] = fraction * m[d] / dt;
+			s->se3.position[d] += fraction * m[d];
 		}
-		s->angVel = Vector3r(0, 0, th / dt);
+		const Real th = fraction * m[2];
+		s->angVel     = Vector3r(0, 0, th / dt);
 		if (th != 0) {
 			s->se3.orientation = Quaternionr(Eigen::AngleAxis<Real>(th, Vector3r::UnitZ())) * s->se3.orientation;
 			s->se3.orientation.normalize();
@@ -309,14 +352,15 @@ void ImplicitLogTimeSolver::action()
 	const Balance b = measureBalance();
 	const TrackHeldBodiesAtExit track { this };
 	const StepOutcome out = settleStep(b, b.ratio <= tolerance || b.atRoundOff);
-	if (out != StepOutcome::Continue || iterInStep == 1) relaxing = false, newtonSince = iterInStep, relaxPhase = 0;
+	if (out != StepOutcome::Continue || iterInStep == 1) relaxing = false, newtonSince = iterInStep, relaxPhase = 0, lineAlpha = 0;
 	if (out == StepOutcome::Committed) return;
 	if (out == StepOutcome::Broke) { // the next pass computes the forces without the broken contacts
 		zeroVelocities(scene);
 		return;
 	}
 	if (!relaxing && iterInStep - newtonSince > newtonLimit) {
-		relaxing = true;
+		relaxing  = true;
+		lineAlpha = 0;
 		zeroVelocities(scene);
 		relax.start(scene);
 		++relaxPhase;
@@ -331,7 +375,19 @@ void ImplicitLogTimeSolver::action()
 		relaxing    = false;
 		newtonSince = iterInStep;
 	}
+	if (lineAlpha > 0) {
+		// Backtracking on the unbalanced-force ratio: a full Newton move can jump across a broken
+		// contact's kink (open / closed) and back again; half of it lands on the side it stays on.
+		if (b.ratio > (1 - 1e-4 * lineAlpha) * lineRatio0 && lineAlpha > 1.0 / 64) {
+			moveBodies(-0.5 * lineAlpha);
+			lineAlpha *= 0.5;
+			++backtracks;
+			return;
+		}
+	}
 	newtonStep();
+	lineAlpha  = 1;
+	lineRatio0 = b.ratio;
 }
 
 } // namespace yade

@@ -33,15 +33,18 @@ public:
 	  "open / closed / sliding state that does not settle under Newton) [-]")                                                                       \
 	X(Real, relaxTolerance, 1e-4, swelldem_attr::Setting,                                                                                                \
 	  "Unbalanced-force ratio at which dynamic relaxation hands back to Newton; each further relaxation of the same round goes 100x lower [-]")  \
+	X(long, maxSlidingExact, 1000, swelldem_attr::Setting,                                                                                              \
+	  "Sliding contacts up to which their shear-normal coupling enters the Newton solve exactly (one extra solve each); above, it is left out [-]") \
+	X(long, backtracks, 0, swelldem_attr::Result, "Newton moves halved by the line search so far [-]")                                             \
 	X(long, relaxationIterations, 0, swelldem_attr::Result, "Iterations done by dynamic relaxation so far [-]")                                      \
 	X(long, factorizations, 0, swelldem_attr::Result, "Numeric Cholesky factorizations so far [-]")                                                    \
 	X(long, analyses, 0, swelldem_attr::Result, "Symbolic analyses (contact graph changes) so far [-]")                                               \
 	X(long, activeChanges, 0, swelldem_attr::Result, "Contacts whose state (intact, open, sticking, sliding) changed in the last iteration [-]")              \
 	X(std::vector<int>, pinnedDofs, std::vector<int>(), swelldem_attr::Internal,                                                                       \
 	  "Degrees of freedom held to remove a free specimen's rigid-body modes, as 3 x body id + axis (0 x, 1 y) [-]")                                  \
-	X(std::vector<int>, contactSide, std::vector<int>(), swelldem_attr::Internal,                                                                      \
-	  "Per contact in this step: 0 not yet seen broken, 2 open, 3 sticking, +-1 sliding on either side of the Coulomb cone [-]")                   \
-	X(std::vector<int>, contactTurns, std::vector<int>(), swelldem_attr::Internal, "Per contact: times it turned (opened/closed, slip reversed) this step [-]") \
+	X(Real, lineAlpha, 0.0, swelldem_attr::Internal, "Fraction of the last Newton move being tried by the line search (0: none) [-]")               \
+	X(Real, lineRatio0, 0.0, swelldem_attr::Internal, "Unbalanced-force ratio before the last Newton move [-]")                                     \
+	X(std::vector<Real>, lineMove, std::vector<Real>(), swelldem_attr::Internal, "The last Newton move, 3 per body (x, y, rotation z) [m, rad]")  \
 	X(bool, relaxing, false, swelldem_attr::Internal, "The step is in a dynamic relaxation phase [-]")                                                  \
 	X(long, newtonSince, 0, swelldem_attr::Internal, "Iteration of the step at which Newton (re)started [-]")                                         \
 	X(int, relaxPhase, 0, swelldem_attr::Internal, "Dynamic relaxation phases in the current round [-]")                                             \
@@ -62,6 +65,7 @@ private:
 	long relaxationAtStepStart = 0, factorizationsAtStepStart = 0; // for the progress line only
 	void                                  choosePins();
 	void                                  newtonStep();
+	void                                  moveBodies(Real fraction); // by fraction x lineMove, through the velocities
 	std::unique_ptr<ImplicitLinearSystem> sys; // not saved: rebuilt from the scene, it gives the same factor
 };
 
