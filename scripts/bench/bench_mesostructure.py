@@ -37,6 +37,7 @@ def main(argv=None):
         args = ap.parse_args(sys.argv[1:] if argv is None else argv)
         options.integer("repeat", args.repeat, lo=1)
         options.numbers("size_mm", args.size_mm, count=2, lo=0, unit="mm")
+        meso.MesoParameters(width_mm=args.size_mm[0], height_mm=args.size_mm[1]).validate()  # the generator's own checks
     runs = []
     for seed in range(1, args.repeat + 1):
         t = time.perf_counter()
