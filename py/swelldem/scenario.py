@@ -348,7 +348,7 @@ def run(test, prepared=None):
            "calibration": cal, "d_inf_m": d_inf, "r_mean_m": r_mean, "n_particles": int(len(assembly.x)),
            "n_contacts_by_kind": counts, "n_gel_pockets": int(len(gel)), "times_days": [], "swelling_strain_x": [],
            "swelling_strain_y": [], "unbalanced_ratio": [], "adr_iterations_per_step": [], "step_at_round_off": [], "adr_iterations": 0,
-           "per_kind": {n: {"fn_p05_kN": [], "fn_p95_kN": [], "broken": []} for n in paper.KIND_NAMES},
+           "per_kind": {n: {"fn_p05_kN": [], "fn_p95_kN": [], "broken": [], "born_broken": []} for n in paper.KIND_NAMES},
            "status": "running", "wall_s": 0.0}
     rec = recorder.StepRecorder(assembly, ys, solver, res, test.out, vtk_every=test.vtk_every)
     solver.stepHook = rec
@@ -372,5 +372,5 @@ def run(test, prepared=None):
             signal.signal(sig, handler)
     recorder.export_vtk(test.out)
     report.write_results(test.out, res)
-    report.write_all(test.out, res, assembly, recorder.broken_contacts())
+    report.write_all(test.out, res, assembly, recorder.broken_contacts(rec.bonded))
     return res
