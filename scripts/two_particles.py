@@ -67,7 +67,8 @@ res = {"case": args.case, "steps_per_decade": args.steps_per_decade, "behaviour"
        "times_days": history["times_days"], "strain": history["strain"], "eps_final": history["strain"][-1],
        "fn_N": history["fn_N"], "adr_iterations": solver.totalIterations, "adr_iterations_per_step": solver.stepIterations,
        "n_steps": solver.nSteps, "tolerance": args.tolerance, "d_inf_m": D_INF, "radius_m": R,
-       "paper_eps_final": 1000e-6, "wall_s": time.time() - t0}
+       "paper_eps_final": 1000e-6, "contact_area_m2": i.phys.area, "contact_length_m": i.phys.length,
+       "b3_q_per_Pa": [kind.q1, kind.q2, kind.q3, kind.q4], "kinetics_days": [kind.tauC, kind.tauL], "wall_s": time.time() - t0}
 if args.restrained:
     core = kind.evaluateHistory(list(solver.times), [0.0] * len(solver.times), i.phys.area, i.phys.length, -1.0)
     res["fn_core_N"] = core
