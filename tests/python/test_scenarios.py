@@ -55,6 +55,26 @@ def test_output_contract(isr_runs):
     assert res["calibration"]["run"] is False  # paper-micro does not use beta: no second simulation
 
 
+def assert_creep_relaxes_isr_forces(el, ve):
+    """Aging viscoelasticity relaxes the forces of every kind, as in the paper's Table 3.4 (ISR,
+    elastic -> viscoelastic, kN): MORTAR -8.3/2.5 -> -2.0/0.6, ITZ -3.7/6.3 -> -1.6/1.9, AGG
+    0.0/8.4 -> -0.5/3.1. Every kind's 5 %-95 % spread shrinks to 0.24-0.43 of the elastic one in
+    the paper, 0.28-0.41 in ours (12 mm, seed 1, N = 3): at most 0.55 here (the largest measured
+    plus a margin of 0.14, for the seed-to-seed scatter of 12 mm specimens). The 95 % quantile
+    falls for every kind; the compressive 5 % quantile of MORTAR and ITZ shrinks in magnitude;
+    the AGG 5 % quantile, tensile or nil with elastic contacts, falls (paper 0.0 -> -0.5, ours
+    0.85 -> 0.03)."""
+    for kind in ("MORTAR", "ITZ", "AGG"):
+        e05, e95 = el[f"fn_p05_kN_{kind}"][-1], el[f"fn_p95_kN_{kind}"][-1]
+        v05, v95 = ve[f"fn_p05_kN_{kind}"][-1], ve[f"fn_p95_kN_{kind}"][-1]
+        assert 0 < v95 - v05 <= 0.55 * (e95 - e05), (kind, (v95 - v05) / (e95 - e05))
+        assert v95 < e95, kind
+        if kind == "AGG":
+            assert v05 < e05, kind
+        else:
+            assert e05 < v05 < 0, kind
+
+
 def test_paper_findings_isr(isr_runs):
     el, ve, dmg = (isr_runs[k][1] for k in ("el", "ve", "ve-dmg"))
     # Aggregates restrain the swelling mortar: the specimen swells less than free mortar (eps_inf = 1000e-6).
@@ -63,10 +83,7 @@ def test_paper_findings_isr(isr_runs):
         assert r["swelling_strain_y"][-1] == pytest.approx(r["swelling_strain_x"][-1], rel=0.15)
     # Mortar is mostly in compression, aggregates mostly in tension (paper 3.5.2).
     assert el["fn_p05_kN_MORTAR"][-1] < 0 and el["fn_p95_kN_AGG"][-1] > 0
-    # Aging viscoelasticity relaxes the forces of every kind (paper Table 3.4: -57 % to -76 %).
-    for kind in ("MORTAR", "ITZ", "AGG"):
-        assert abs(ve[f"fn_p05_kN_{kind}"][-1]) < abs(el[f"fn_p05_kN_{kind}"][-1]) or kind == "AGG"
-        assert ve[f"fn_p95_kN_{kind}"][-1] < el[f"fn_p95_kN_{kind}"][-1]
+    assert_creep_relaxes_isr_forces(el, ve)
     # No damage without damage; broken counts never decrease with damage, and ITZ breaks most (paper 3.5.5).
     assert all(b == 0 for k in ("MORTAR", "ITZ", "AGG") for b in el[f"broken_{k}"])
     for k in ("MORTAR", "ITZ", "AGG"):
@@ -92,12 +109,38 @@ def test_compare_table_3_7(isr_runs, tmp_path):
     assert "variation to the reference" in (tmp_path / "compare.md").read_text()
 
 
-def test_asr_coarse_swells_only_gel_pockets(tmp_path):
-    res, _ = swelling_test(tmp_path / "asrc", "--scenario", "asr-coarse", "--behaviour", "elastic", "--no-damage")
-    n_agg = res["n_contacts_by_kind"]["AGG"]
-    assert res["n_gel_pockets"] == pytest.approx(0.1 * n_agg, abs=1)
-    # Gel pockets in a few aggregate contacts swell the specimen far less than swelling mortar would.
-    assert 0 < res["swelling_strain_x"][-1] < 0.3e-3
+GEL_SCRIPT = r"""
+import sys
+sys.path.insert(0, sys.argv[1])
+from swelldem import scenario
+res = scenario.run(scenario.SwellingTest(scenario='asr-coarse', behaviour='elastic', damage=False, size_mm=(12, 12),
+                                         steps_per_decade=3, gel_fraction=float(sys.argv[2]), out=sys.argv[3]))
+# what the scene holds, read from the interactions themselves, not from what the scenario returned
+def d_inf(p):
+    return p.swellDispInf if p.swellDispInf >= 0 else p.kind.swellDispInf
+real = [i.phys for i in O.interactions if i.isReal]
+dump({'strain': [res['swelling_strain_x'][-1], res['swelling_strain_y'][-1]], 'd_inf_m': res['d_inf_m'],
+      'n_agg': res['n_contacts_by_kind']['AGG'], 'n_gel_pockets': res['n_gel_pockets'],
+      'agg_d_inf': [d_inf(p) for p in real if p.kindId == 2 and d_inf(p) != 0],
+      'other_d_inf': [d_inf(p) for p in real if p.kindId != 2 and d_inf(p) != 0]})
+"""
+
+
+def test_asr_coarse_swells_only_gel_pockets(yade_run, tmp_path):
+    """ASR with reactive coarse aggregate: the swelling comes from gel pockets only, a seeded 10 %
+    of the aggregate contacts. Read from the scene: exactly round(0.1 n_AGG) aggregate contacts
+    swell, each with the scenario's d_inf, and no mortar or ITZ contact swells; without gel pockets
+    the specimen does not swell at all, with them it swells far less than swelling mortar would."""
+    from conftest import REPO
+    res = yade_run(GEL_SCRIPT, os.path.join(REPO, "py"), 0.1, tmp_path / "gel", threads=1)
+    assert len(res["agg_d_inf"]) == round(0.1 * res["n_agg"]) > 0
+    assert res["agg_d_inf"] == pytest.approx([res["d_inf_m"]] * len(res["agg_d_inf"]), rel=1e-12)
+    assert res["other_d_inf"] == []
+    assert res["n_gel_pockets"] == len(res["agg_d_inf"])
+    assert all(0 < e < 0.3e-3 for e in res["strain"]), res["strain"]
+    none = yade_run(GEL_SCRIPT, os.path.join(REPO, "py"), 0.0, tmp_path / "nogel", threads=1)
+    assert none["agg_d_inf"] == [] and none["other_d_inf"] == []
+    assert max(abs(e) for e in none["strain"]) < 1e-12, none["strain"]
 
 
 def test_kind_param_changes_the_mortar_strength(isr_runs, tmp_path):
