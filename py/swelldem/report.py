@@ -44,8 +44,7 @@ def load_results(path):
     try:
         res = json.loads(text)
     except ValueError as e:
-        what = "truncated" if not text.rstrip().endswith("}") else "malformed"
-        raise ResultsError(f"{path}: not a results.json of swelldem: {what} JSON ({e})") from None
+        raise ResultsError(f"{path}: not a results.json of swelldem: truncated or malformed JSON ({e})") from None
     if not isinstance(res, dict):
         raise ResultsError(f"{path}: not a results.json of swelldem: a JSON {type(res).__name__}, not an object")
     missing = [k for k in RESULT_KEYS if k not in res]
