@@ -281,3 +281,30 @@ def test_a_stopped_run_says_so_and_keeps_its_steps(tmp_path, sig):
     assert res["status"] == f"interrupted: {signal.Signals(sig).name}", (res["status"], err[-2000:])
     assert len(res["times_days"]) >= 3 and len(res["times_days"]) < res.get("n_steps", 10 ** 9)
     assert res["updated"] <= time.time()
+
+
+def test_a_killed_run_is_reported_unfinished(tmp_path):
+    """SIGKILL cannot be caught: results.json keeps 'running' with the time of its last step
+    ('updated'), and the readers say the run is unfinished once that time is old (report.run_state;
+    compare_runs.py and paper_tables.py mark it so)."""
+    from swelldem import report
+    out = tmp_path / "run"
+    p = subprocess.Popen([LAUNCHER, "-j", "1", "-n", "-x", SCRIPT, "--size-mm", "16", "16", "--scenario", "isr", "--behaviour",
+                          "viscoelastic", "--steps-per-decade", "20", "--out", str(out)],
+                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env={**os.environ, "SWELLDEM_BUILD_DIR": build_dir()})
+    results = out / "results.json"
+    deadline = time.time() + 300
+    while time.time() < deadline and p.poll() is None:
+        try:
+            if len(json.loads(results.read_text())["times_days"]) >= 2:
+                break
+        except (OSError, ValueError):
+            pass
+        time.sleep(0.2)
+    p.kill()
+    p.wait(timeout=60)
+    res = report.load_results(str(results))
+    assert res["status"] == "running" and len(res["times_days"]) >= 2
+    assert report.run_state(res).startswith("running (last update")
+    later = res["updated"] + report.STALE_AFTER_S + 1
+    assert report.run_state(res, now=later).startswith("unfinished (last update ")
