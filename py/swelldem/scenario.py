@@ -121,6 +121,11 @@ class SwellingTest:
             options.number("aggregate_area_fraction", self.aggregate_area_fraction, lo=0, hi=1, lo_incl=True,
                            allowed="< 0 (the generator's default) or 0 <= aggregate_area_fraction < 1")
         options.integer("vtk_every", self.vtk_every, lo=0)
+        # the mesostructure generator's own checks (a specimen too small for the sieve fractions, an
+        # aggregate fraction it cannot place, ...), run here so that they too come before any work
+        from .meso import MesoParameters
+        overrides = {} if self.aggregate_area_fraction < 0 else {"aggregate_area_fraction": self.aggregate_area_fraction}
+        MesoParameters().replace(width_mm=self.size_mm[0], height_mm=self.size_mm[1], **overrides).validate()
         if not (isinstance(self.out, str) and self.out):
             _bad("out", self.out, "a folder name")
         if not isinstance(self.kind_params, dict):
