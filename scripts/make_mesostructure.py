@@ -76,7 +76,7 @@ def main(argv=None):
             contact_gap_ratio=args.contact_gap_ratio, label_rule=args.label_rule).validate()
         assembly = meso.generate(params, seed=args.seed)
     except (meso.MesoParameterError, meso.AggregatePlacementError) as e:
-        print(f"make_mesostructure: error: {e}", file=sys.stderr)
+        print(f"make_mesostructure.py: {e}", file=sys.stderr)
         return 2
     os.makedirs(args.out, exist_ok=True)
     npz = assembly.save(os.path.join(args.out, "assembly.npz"))

@@ -5,8 +5,10 @@
 
 expects DIR/<scenario>-<el|ve>-<nodmg|dmg>/results.json for scenario in isr, asr-fine, asr-coarse
 (the runs listed in docs/scenarios.md) and prints Markdown tables: for each run and contact kind,
-our 5 % / 95 % normal-force quantiles [kN] and broken contacts (%) beside the paper's."""
-import json
+our 5 % / 95 % normal-force quantiles [kN] and broken contacts (%) beside the paper's. Runs that did
+not finish (failed, interrupted, or 'running' with an old update time: the process died) are marked
+with how they ended; a truncated, malformed or foreign results.json is refused with a message
+naming it (exit status 1), before anything is printed."""
 import os
 import sys
 
@@ -31,38 +33,58 @@ PAPER = {
 BEHAVIOUR = {"el": "elastic", "ve": "aging viscoelastic"}
 
 
+def load(path):
+    try:
+        return report.load_results(path)
+    except report.ResultsError as e:
+        sys.exit(f"paper_tables.py: {e}")
+
+
 def main(folder):
+    if not os.path.isdir(folder):
+        sys.exit(f"paper_tables.py: folder = {folder!r} is not a folder; allowed: a folder of runs <scenario>-<el|ve>-<nodmg|dmg>/")
+    # every results.json is read (and refused if malformed) before anything is printed
+    runs = {}
+    for name in sorted(os.listdir(folder)):
+        path = os.path.join(folder, name, "results.json")
+        if os.path.isdir(os.path.join(folder, name)) and os.path.exists(path):
+            runs[name] = load(path)
+    unfinished = False
     for damage, title in (("nodmg", "without damage (paper Table 3.4)"), ("dmg", "with damage (paper Table 3.6)")):
         print(f"### Normal contact forces {title}\n")
         print("| analysis | behaviour | contact | 5 % ours | 5 % paper | 95 % ours | 95 % paper | broken % ours | broken % paper |")
         print("|---|---|---|---|---|---|---|---|---|")
         for sc in ("isr", "asr-fine", "asr-coarse"):
             for beh in ("el", "ve"):
-                path = os.path.join(folder, f"{sc}-{beh}-{damage}", "results.json")
-                if not os.path.exists(path):
+                res = runs.get(f"{sc}-{beh}-{damage}")
+                if res is None:
                     print(f"| {report.LABEL[sc]} | {BEHAVIOUR[beh]} | (not run) | | | | | | |")
                     continue
-                with open(path) as f:
-                    res = json.load(f)
+                state = report.run_state(res)
+                # a run that did not finish shows its last step's numbers, marked with how it ended
+                mark = "" if state == "finished" else f" ({state}) †"
+                unfinished |= bool(mark)
                 rows = {r["kind"]: r for r in report.final_rows(res)}
                 for kind in ("MORTAR", "ITZ", "AGG"):
                     p = PAPER[(sc, beh, damage)][kind]
                     r = rows[kind]
                     paper_broken = f"{p[2]:.1f}" if len(p) > 2 else "0"
-                    print(f"| {report.LABEL[sc]} | {BEHAVIOUR[beh]} | {kind} | {r['fn_p05_kN']:.2f} | {p[0]:.1f} | {r['fn_p95_kN']:.2f} | "
+                    print(f"| {report.LABEL[sc]} | {BEHAVIOUR[beh]}{mark} | {kind} | {r['fn_p05_kN']:.2f} | {p[0]:.1f} | {r['fn_p95_kN']:.2f} | "
                           f"{p[1]:.1f} | {r['broken_pct']:.1f} | {paper_broken} |")
         print()
+    if unfinished:
+        print("† not finished: the numbers are those of the run's last step done, not of the end of the test.\n")
+    print("Broken: contacts bonded at the start that broke; contacts made during the run (born broken) are not counted.\n")
     print("### Runs\n")
-    print("| run | particles | contacts | final strain x, y (1e-6) | ADR iterations | wall (s) | status |")
-    print("|---|---|---|---|---|---|---|")
-    for name in sorted(os.listdir(folder)):
-        path = os.path.join(folder, name, "results.json")
-        if os.path.isdir(os.path.join(folder, name)) and os.path.exists(path):
-            with open(path) as f:
-                r = json.load(f)
-            sx, sy = (r["swelling_strain_x"] or [float("nan")])[-1], (r["swelling_strain_y"] or [float("nan")])[-1]
-            print(f"| {name} | {r['n_particles']} | {sum(r['n_contacts_by_kind'].values())} | {sx * 1e6:.0f}, {sy * 1e6:.0f} | "
-                  f"{r['adr_iterations']} | {r['wall_s']:.0f} | {r['status'][:40]} |")
+    print("| run | particles | contacts | final strain x, y (1e-6) | iterations | wall (s) | last step (day) | new contacts | status |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for name, r in runs.items():
+        sx, sy = (r["swelling_strain_x"] or [float("nan")])[-1], (r["swelling_strain_y"] or [float("nan")])[-1]
+        born = [row["born_broken"] for row in report.final_rows(r)]
+        born = "-" if None in born else str(sum(born))
+        t_last = f"{r['times_days'][-1]:g}" if r["times_days"] else "-"
+        print(f"| {name} | {r.get('n_particles', '?')} | {sum(r['n_contacts_by_kind'].values())} | {sx * 1e6:.0f}, {sy * 1e6:.0f} | "
+              f"{r.get('adr_iterations', '?')} | {r.get('wall_s', float('nan')):.0f} | {t_last} | {born} | {report.run_state(r)[:60]} |")
 
 
 if __name__ == "__main__":

@@ -14,15 +14,16 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(sys.argv[0]))), "py"))
-from swelldem import scenario  # noqa: E402
+from swelldem import options, scenario  # noqa: E402
 
 ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
 scenario.add_arguments(ap)
-try:
+with options.refuse_bad("swelling_test.py"):  # exit status 2, as argparse's, before any work
     test = scenario.from_arguments(ap.parse_args(sys.argv[1:]))
-    test.validate()
-    res = scenario.run(test)  # the plugin's objects are made (and validate their settings) before any work
-except ValueError as e:
+    prepared = scenario.prepare(test)
+try:
+    res = scenario.run(test, prepared)
+except ValueError as e:  # raised during the run: results.json says "failed: ..."
     sys.exit(f"swelling_test.py: {e}")
 except scenario.Interrupted as e:  # results.json says "interrupted: <signal>"; the steps done are kept
     sys.exit(f"swelling_test.py: interrupted by {e}; results so far in {test.out}/results.json")

@@ -20,7 +20,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "py"))
-from swelldem import paper  # noqa: E402
+from swelldem import options, paper  # noqa: E402
 
 ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
 ap.add_argument("--size-mm", type=float, nargs=2, default=(20.0, 20.0), metavar=("W", "H"), help="specimen size [mm]")
@@ -35,30 +35,39 @@ ap.add_argument("--d-inf-rule", choices=("mean-radius", "contact-length"), defau
                 help="mean-radius: the paper's d_inf = eps_inf x 2 R_mean on every contact; contact-length: "
                      "d_inf = eps_inf x L per contact (L its initial centre distance), a compatible expansion, as a check")
 ap.add_argument("--out", default="out/table_3_2")
-args = ap.parse_args(sys.argv[1:])
-for name in ("steps_per_decade", "young", "eps_inf", "t_start"):
-    if getattr(args, name) <= 0:
-        sys.exit(f"table_3_2.py: --{name.replace('_', '-')} = {getattr(args, name)} is out of range; allowed: > 0")
-if min(args.size_mm) < 4:
-    sys.exit(f"table_3_2.py: --size-mm = {args.size_mm} is out of range; allowed: >= 4 mm (a few discs)")
 
-import numpy as np
-import yade
+import numpy as np  # noqa: E402
+import yade  # noqa: E402
 
-from swelldem import dem, measure, meso
+from swelldem import dem, measure, meso  # noqa: E402
+
+with options.refuse_bad("table_3_2.py"):  # every option, before any work; exit status 2 as argparse's
+    args = ap.parse_args(sys.argv[1:])
+    options.numbers("size_mm", args.size_mm, count=2, lo=4, lo_incl=True, allowed="two finite lengths >= 4 [mm] (a few discs)")
+    options.integer("seed", args.seed, lo=0)
+    options.number("steps_per_decade", args.steps_per_decade, lo=0)
+    options.tolerance("tolerance", args.tolerance)
+    options.number("young", args.young, lo=0, unit="Pa")
+    options.number("eps_inf", args.eps_inf, lo=0)
+    tau_c, tau_l, t_end = paper.KINETICS[args.case]
+    options.number("t_start", args.t_start, lo=0, hi=t_end, unit="day", allowed=f"0 < t_start < {t_end:g} (the end of {args.case}) [day]")
+    if not args.out:
+        options.bad("out", args.out, "a folder name")
+    # The plugin's objects first: their constructors check the rest (tStart < tEnd, ...). The
+    # kind's d_inf depends on the assembly and is set once it exists.
+    kind = dem.contact_kind("MORTAR", behaviour="elastic", young=args.young, b3="mortar", kinetics=args.case, swelling=True)
+    solver = dem.make_solver("adr", tStart=args.t_start, tEnd=t_end, stepsPerDecade=args.steps_per_decade, tolerance=args.tolerance,
+                             label="solver")
 
 O = yade.Omega()
-PAPER_EPS_FINAL = 1061e-6
+PAPER_EPS_FINAL = paper.TABLE_3_2_EPS_FINAL
 t0 = time.time()
 os.makedirs(args.out, exist_ok=True)
 
 a = meso.generate(seed=args.seed, width_mm=args.size_mm[0], height_mm=args.size_mm[1], aggregate_area_fraction=0.0)
 r_mean = float(a.r.mean())
 d_inf = args.eps_inf * 2 * r_mean
-tau_c, tau_l, t_end = paper.KINETICS[args.case]
-kind = dem.contact_kind("MORTAR", behaviour="elastic", young=args.young, b3="mortar", swell_disp_inf=d_inf, kinetics=args.case)
-solver = dem.make_solver("adr", tStart=args.t_start, tEnd=t_end, stepsPerDecade=args.steps_per_decade, tolerance=args.tolerance,
-                         label="solver")
+kind.swellDispInf = d_inf
 ys = dem.to_yade(a, {"MORTAR": kind}, solver)
 if args.d_inf_rule == "contact-length":
     dem.set_contact_swelling(ys, np.arange(a.n_contacts), args.eps_inf * a.distance_m)
@@ -106,7 +115,7 @@ res = {
     "eps_final_side": 0.5 * (hist["eps_side_x"][-1] + hist["eps_side_y"][-1]),
     "eps_final_robust": 0.5 * (hist["eps_robust_x"][-1] + hist["eps_robust_y"][-1]),
     "eps_final_over_eps_inf": 0.5 * (eps_x + eps_y) / args.eps_inf,
-    "paper_eps_final": PAPER_EPS_FINAL, "paper_r_mean_m": 0.397e-3,
+    "paper_eps_final": PAPER_EPS_FINAL, "paper_r_mean_m": paper.TABLE_3_2_R_MEAN,
     # Affine estimate: uniform isotropic strain e with no shear; equilibrium of the whole network
     # in the trace gives sum kn (e L - d) L = 0, kn = E A / L, hence e = d_inf / (A-weighted mean L).
     "eps_affine_estimate": float(d_inf * A.sum() / (A * L).sum()) if args.d_inf_rule == "mean-radius" else args.eps_inf,

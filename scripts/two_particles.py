@@ -13,7 +13,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "py"))
-from swelldem import paper  # noqa: E402
+from swelldem import options, paper  # noqa: E402
 
 ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
 ap.add_argument("--case", choices=tuple(paper.KINETICS), default="isr")
@@ -24,7 +24,6 @@ ap.add_argument("--behaviour", choices=("elastic", "aging-elastic", "viscoelasti
 ap.add_argument("--restrained", action="store_true", help="hold both discs: relaxed compressive force history")
 ap.add_argument("--tolerance", type=float, default=1e-6, help="ADR unbalanced-force ratio")
 ap.add_argument("--t-start", type=float, default=0.01, help="age of the stress-free start [day]")
-args = ap.parse_args(sys.argv[1:])
 
 from yade import wrapper as W  # noqa: E402
 import yade  # noqa: E402
@@ -32,14 +31,18 @@ from swelldem import dem  # noqa: E402
 
 O = yade.Omega()
 R, D_INF = 0.5, 1000e-6  # [m] the paper's Table 3.1 pair: d_inf = eps_inf x 2 R with eps_inf = 1000e-6
-behaviour = args.behaviour or ("viscoelastic" if args.restrained else "elastic")
-t_end = paper.KINETICS[args.case][2]
-try:  # the plugin's constructors validate the settings, before any work
+with options.refuse_bad("two_particles.py"):  # every option, then the plugin's constructors, before any work
+    args = ap.parse_args(sys.argv[1:])
+    behaviour = args.behaviour or ("viscoelastic" if args.restrained else "elastic")
+    t_end = paper.KINETICS[args.case][2]
+    options.number("steps_per_decade", args.steps_per_decade, lo=0)
+    options.tolerance("tolerance", args.tolerance)
+    options.number("t_start", args.t_start, lo=0, hi=t_end, unit="day", allowed=f"0 < t_start < {t_end:g} (the end of {args.case}) [day]")
+    if not args.out:
+        options.bad("out", args.out, "a folder name")
     kind = dem.contact_kind("MORTAR", behaviour=behaviour, young=30e9, b3="mortar", swell_disp_inf=D_INF, kinetics=args.case)
     solver = dem.make_solver("adr", tStart=args.t_start, tEnd=t_end, stepsPerDecade=args.steps_per_decade, tolerance=args.tolerance,
                              label="solver")
-except ValueError as e:
-    sys.exit(f"two_particles.py: {e}")
 os.makedirs(args.out, exist_ok=True)
 t0 = time.time()
 
@@ -64,7 +67,8 @@ res = {"case": args.case, "steps_per_decade": args.steps_per_decade, "behaviour"
        "times_days": history["times_days"], "strain": history["strain"], "eps_final": history["strain"][-1],
        "fn_N": history["fn_N"], "adr_iterations": solver.totalIterations, "adr_iterations_per_step": solver.stepIterations,
        "n_steps": solver.nSteps, "tolerance": args.tolerance, "d_inf_m": D_INF, "radius_m": R,
-       "paper_eps_final": 1000e-6, "wall_s": time.time() - t0}
+       "paper_eps_final": 1000e-6, "contact_area_m2": i.phys.area, "contact_length_m": i.phys.length,
+       "b3_q_per_Pa": [kind.q1, kind.q2, kind.q3, kind.q4], "kinetics_days": [kind.tauC, kind.tauL], "wall_s": time.time() - t0}
 if args.restrained:
     core = kind.evaluateHistory(list(solver.times), [0.0] * len(solver.times), i.phys.area, i.phys.length, -1.0)
     res["fn_core_N"] = core

@@ -6,6 +6,7 @@ import csv
 import json
 import math
 import os
+import time
 
 import numpy as np
 
@@ -14,6 +15,75 @@ from .paper import KIND_NAMES
 LABEL = {"isr": "ISR", "asr-fine": "ASR-fine agg.", "asr-coarse": "ASR-coarse agg."}
 COLORS = {"MORTAR": "tab:blue", "ITZ": "tab:red", "AGG": "tab:green"}
 
+
+
+class ResultsError(ValueError):
+    """A results.json that is missing, malformed, truncated or not a swelling test's; the message
+    names the file."""
+
+
+#: What a swelling test's results.json must hold for the tables: key -> type.
+RESULT_KEYS = {"scenario": str, "behaviour": str, "damage": bool, "status": str, "times_days": list,
+               "n_contacts_by_kind": dict, "per_kind": dict}
+SERIES = ("fn_p05_kN", "fn_p95_kN", "broken")
+
+#: A 'running' results.json not rewritten for this long is taken for a dead run [s]: the recorder
+#: rewrites it after every physical step, and steps of the paper-size runs take seconds to a few
+#: minutes (docs/performance.md). Scaled up for slow runs: 10 x the run's mean step time.
+STALE_AFTER_S = 600.0
+
+
+def load_results(path):
+    """The results dict of a swelling test's results.json at `path`; ResultsError naming the file
+    when it is missing, is not JSON (truncated, malformed) or lacks what the tables read."""
+    try:
+        with open(path) as f:
+            text = f.read()
+    except OSError as e:
+        raise ResultsError(f"{path}: cannot be read ({e.strerror}); run scripts/swelling_test.py --out {os.path.dirname(path) or '.'} first")
+    try:
+        res = json.loads(text)
+    except ValueError as e:
+        raise ResultsError(f"{path}: not a results.json of swelldem: truncated or malformed JSON ({e})") from None
+    if not isinstance(res, dict):
+        raise ResultsError(f"{path}: not a results.json of swelldem: a JSON {type(res).__name__}, not an object")
+    missing = [k for k in RESULT_KEYS if k not in res]
+    if missing:
+        raise ResultsError(f"{path}: not a swelling test's results.json (scripts/swelling_test.py): no {', '.join(missing)}")
+    wrong = [f"{k} is a {type(res[k]).__name__}" for k, t in RESULT_KEYS.items() if not isinstance(res[k], t)]
+    if wrong:
+        raise ResultsError(f"{path}: not a swelling test's results.json: {', '.join(wrong)}")
+    n = len(res["times_days"])
+    for name in KIND_NAMES:
+        d = res["per_kind"].get(name)
+        if not isinstance(d, dict) or any(not isinstance(d.get(k), list) or len(d[k]) != n for k in SERIES):
+            raise ResultsError(f"{path}: not a swelling test's results.json: per_kind {name} lacks one of {', '.join(SERIES)} "
+                               f"with one value per step ({n} steps)")
+        if not isinstance(res["n_contacts_by_kind"].get(name, 0), int):
+            raise ResultsError(f"{path}: not a swelling test's results.json: n_contacts_by_kind {name} is not an integer")
+    return res
+
+
+def run_state(res, now=None):
+    """How a run ended, for a table: 'finished', its 'failed: ...' or 'interrupted: ...' status, or,
+    for a run still 'running', 'running (last update N s ago)' while it is recent and
+    'unfinished (last update <UTC time>)' once older than the stale limit (STALE_AFTER_S, or
+    10 x the run's mean step time): the process died without a word (SIGKILL, a crash)."""
+    status = str(res.get("status", "?"))
+    if status == "finished" or status.startswith(("failed", "interrupted")):
+        return status
+    if status != "running":
+        return f"unknown status {status!r}"
+    updated = res.get("updated")
+    if not isinstance(updated, (int, float)) or isinstance(updated, bool):
+        return "unfinished (no update time)"
+    now = time.time() if now is None else now
+    steps = len(res.get("times_days") or []) or 1
+    limit = max(STALE_AFTER_S, 10.0 * float(res.get("wall_s") or 0.0) / steps)
+    stamp = time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime(updated))
+    if now - updated > limit:
+        return f"unfinished (last update {stamp})"
+    return f"running (last update {stamp}, {now - updated:.0f} s ago)"
 
 
 def _iteration_name(res):
@@ -28,16 +98,21 @@ def _plt():
 
 
 def final_rows(res):
-    """Per kind at the last step: 5 % and 95 % normal-force quantiles [kN], broken contacts and their share."""
+    """Per kind at the last step: 5 % and 95 % normal-force quantiles [kN], broken contacts (of the
+    n_contacts bonded at the start) and their share, and the contacts made during the run (born
+    broken; None in a results.json written before they were counted apart, whose 'broken' then
+    includes them)."""
     rows = []
     for name in KIND_NAMES:
         d = res["per_kind"][name]
         n = res["n_contacts_by_kind"].get(name, 0)
         broken = d["broken"][-1] if d["broken"] else 0
+        born = d.get("born_broken")
         rows.append({"kind": name, "n_contacts": n,
                      "fn_p05_kN": d["fn_p05_kN"][-1] if d["fn_p05_kN"] else float("nan"),
                      "fn_p95_kN": d["fn_p95_kN"][-1] if d["fn_p95_kN"] else float("nan"),
-                     "broken": broken, "broken_pct": 100.0 * broken / n if n else float("nan")})
+                     "broken": broken, "broken_pct": 100.0 * broken / n if n else float("nan"),
+                     "born_broken": (born[-1] if born else 0) if born is not None else None})
     return rows
 
 
@@ -51,11 +126,16 @@ def write_tables(out, res):
     t = res["times_days"][-1] if res["times_days"] else float("nan")
     lines = [f"# {LABEL.get(res['scenario'], res['scenario'])}, {res['behaviour']}, damage {'on' if res['damage'] else 'off'}: "
              f"normal contact forces at t = {t:g} days", "",
-             "| contact | contacts | 5 % Fn (kN) | 95 % Fn (kN) | broken (%) |", "|---|---|---|---|---|"]
+             "| contact | contacts | 5 % Fn (kN) | 95 % Fn (kN) | broken (%) | new contacts |", "|---|---|---|---|---|---|"]
     for r in rows:
         lines.append(f"| {r['kind']} | {r['n_contacts']} | {r['fn_p05_kN']:.2f} | {r['fn_p95_kN']:.2f} | "
-                     f"{r['broken']} ({r['broken_pct']:.1f}) |")
+                     f"{r['broken']} ({r['broken_pct']:.1f}) | {'-' if r['born_broken'] is None else r['born_broken']} |")
     sx, sy = res["swelling_strain_x"], res["swelling_strain_y"]
+    lines += ["", "Broken: contacts bonded at the start that broke (share of the kind's contacts). New contacts: "
+                  "contacts made during the run by discs coming into touch, born broken (compression only), not counted as broken."]
+    state = run_state(res)
+    if state != "finished":
+        lines += ["", f"Run not finished ({state}): the numbers are those of its last step done."]
     if sx:
         lines += ["", f"Final swelling strain: x {sx[-1] * 1e6:.0f}e-6, y {sy[-1] * 1e6:.0f}e-6. "
                       f"{res['n_particles']} particles, {_iteration_name(res)} iterations {res['adr_iterations']}, wall {res['wall_s']:.1f} s."]
@@ -163,15 +243,19 @@ def write_results(out, res):
 def compare(reference, others):
     """Rows of the paper's Table 3.7: each run's final 5 %/95 % quantiles and broken contacts per
     kind, with the variation in percent against the reference run, (value - ref) / ref as the
-    paper computes it (a compressive quantile that shrinks varies by a negative percentage)."""
+    paper computes it (a compressive quantile that shrinks varies by a negative percentage).
+    Each row says how its run ended ('run', run_state) and the time of its last step [day]."""
     ref_rows = {r["kind"]: r for r in final_rows(reference)}
     table = []
     for res in [reference] + list(others):
+        state = run_state(res)
+        t_last = res["times_days"][-1] if res["times_days"] else float("nan")
         for r in final_rows(res):
             rr = ref_rows[r["kind"]]
             var = lambda a, b: 100.0 * (a - b) / b if not math.isnan(b) and abs(b) > 1e-12 else float("nan")
             table.append({"scenario": res["scenario"], "behaviour": res["behaviour"], "damage": res["damage"],
                           "kind": r["kind"], "fn_p05_kN": r["fn_p05_kN"], "var_p05_pct": var(r["fn_p05_kN"], rr["fn_p05_kN"]),
                           "fn_p95_kN": r["fn_p95_kN"], "var_p95_pct": var(r["fn_p95_kN"], rr["fn_p95_kN"]),
-                          "broken": r["broken"], "broken_pct": r["broken_pct"]})
+                          "broken": r["broken"], "broken_pct": r["broken_pct"], "born_broken": r["born_broken"],
+                          "run": state, "t_last_days": t_last})
     return table

@@ -22,9 +22,10 @@ Decisions (docs/scenarios.md explains them):
   aggregate contacts are linear elastic (modulus paper.AGGREGATE_YOUNG, an assumption: the paper gives none);
 - the specimen is free (no support); strains are the least-squares affine fit of all displacements.
 
-Validation: what ends up as a ContactKind or solver attribute is validated by the plugin's
-constructors, which run first, before the mesostructure is generated; this module checks only
-what it uses itself (scenario, behaviour, size, seed, the factors it applies, output folder).
+Validation: SwellingTest.validate checks every field (NaN and infinity included) in Python, with
+the one message form of swelldem.options; prepare() then makes the plugin's objects, whose
+constructors check what ends up as a ContactKind or solver attribute. Both run before the
+mesostructure is generated.
 """
 import ast
 import math
@@ -33,14 +34,13 @@ import signal
 import time
 from dataclasses import MISSING, asdict, dataclass, field, fields
 
-from . import paper
+from . import options, paper
 
 BEHAVIOURS = ("elastic", "viscoelastic")
 PARAMETERS = ("paper-micro", "macro")
 
 
-def _bad(name, value, allowed):
-    raise ValueError(f"swelldem: {name} = {value!r} is out of range; allowed: {allowed}")
+_bad = options.bad
 
 
 def _field(default, help, unit=None, flag=None, choices=None, sets=None, factory=None):
@@ -84,29 +84,48 @@ class SwellingTest:
     out: str = _field("out/swelling", "output folder")
 
     def validate(self):
-        """Checks what only Python uses; the plugin's constructors check the rest (run())."""
+        """Every field's range, NaN and infinity included, in Python (options' one message form);
+        the plugin's constructors check the same fields again when run() makes its objects. A
+        tolerance looser than the useful range warns on stderr."""
         if self.scenario not in paper.SCENARIOS:
             _bad("scenario", self.scenario, ", ".join(paper.SCENARIOS))
         if self.behaviour not in BEHAVIOURS:
             _bad("behaviour", self.behaviour, ", ".join(BEHAVIOURS))
         if self.parameters not in PARAMETERS:
             _bad("parameters", self.parameters, ", ".join(PARAMETERS))
+        options.choice("solver", self.solver, ("adr", "implicit"))
         if self.solver == "implicit" and self.damage:
             # measured: during heavy cracking the implicit solver's active set of broken contacts does
             # not settle (6 of 8 runs at 40 mm stopped), docs/performance.md section 1b
             _bad("solver", "implicit (with damage on)", "adr for runs with damage; implicit with --no-damage")
-        if len(self.size_mm) != 2 or not all(0 < s < math.inf for s in self.size_mm):
+        if not isinstance(self.damage, bool):
+            _bad("damage", self.damage, "True, False")
+        try:
+            options.numbers("size_mm", self.size_mm, count=2, lo=0, unit="mm", allowed="two finite lengths > 0 [mm]")
+        except TypeError:
             _bad("size_mm", self.size_mm, "two finite lengths > 0 [mm]")
-        if not (isinstance(self.seed, int) and self.seed >= 0):
-            _bad("seed", self.seed, "an integer >= 0")
-        if not (0 <= self.eps_inf < math.inf):
-            _bad("eps_inf", self.eps_inf, "0 <= eps_inf < inf [-]")
-        if not (0 <= self.gel_fraction <= 1):
-            _bad("gel_fraction", self.gel_fraction, "0 <= gel_fraction <= 1")
-        if not (0 < self.strength_scale < math.inf):
-            _bad("strength_scale", self.strength_scale, "0 < strength_scale < inf")
-        if not (isinstance(self.vtk_every, int) and self.vtk_every >= 0):
-            _bad("vtk_every", self.vtk_every, "an integer >= 0")
+        options.integer("seed", self.seed, lo=0)
+        options.number("steps_per_decade", self.steps_per_decade, lo=0)
+        options.tolerance("tolerance", self.tolerance, zero_means_default=True)
+        options.number("t_start_days", self.t_start_days, lo=0, unit="day")
+        if not (options.is_number(self.t_end_days) and self.t_end_days == 0):
+            options.number("t_end_days", self.t_end_days, lo=self.t_start_days, unit="day",
+                           allowed=f"0 (the paper's end) or t_start_days = {self.t_start_days:g} < t_end_days < inf [day]")
+        options.number("eps_inf", self.eps_inf, lo=0, lo_incl=True, allowed="0 <= eps_inf < inf [-]")
+        options.number("gel_fraction", self.gel_fraction, lo=0, hi=1, lo_incl=True, hi_incl=True)
+        options.number("shear_ratio", self.shear_ratio, lo=0)
+        options.number("aggregate_young", self.aggregate_young, lo=0, unit="Pa")
+        options.number("strength_scale", self.strength_scale, lo=0)
+        options.number("kelvin_units_per_decade", self.kelvin_units_per_decade, lo=0, unit="1/decade")
+        if not (options.is_number(self.aggregate_area_fraction) and self.aggregate_area_fraction < 0):
+            options.number("aggregate_area_fraction", self.aggregate_area_fraction, lo=0, hi=1, lo_incl=True,
+                           allowed="< 0 (the generator's default) or 0 <= aggregate_area_fraction < 1")
+        options.integer("vtk_every", self.vtk_every, lo=0)
+        # the mesostructure generator's own checks (a specimen too small for the sieve fractions, an
+        # aggregate fraction it cannot place, ...), run here so that they too come before any work
+        from .meso import MesoParameters
+        overrides = {} if self.aggregate_area_fraction < 0 else {"aggregate_area_fraction": self.aggregate_area_fraction}
+        MesoParameters().replace(width_mm=self.size_mm[0], height_mm=self.size_mm[1], **overrides).validate()
         if not (isinstance(self.out, str) and self.out):
             _bad("out", self.out, "a folder name")
         if not isinstance(self.kind_params, dict):
@@ -116,6 +135,13 @@ class SwellingTest:
                 _bad("kind_params kind", name, ", ".join(paper.KIND_NAMES))
             if not isinstance(attrs, dict):
                 _bad(f"kind_params['{name}']", attrs, "a dict {ContactKind attribute: value}")
+            for attr, value in attrs.items():
+                # the plugin checks only the values its behaviour uses (a NaN swellDispInf of a kind
+                # that does not swell passes): no ContactKind number means anything at NaN or inf
+                if options.is_number(value):
+                    options.number(f"{name}.{attr}", value)
+                elif isinstance(value, str) and value.strip().lower().lstrip("+-") in ("nan", "inf", "infinity"):
+                    _bad(f"{name}.{attr}", value, "a finite number")
 
     @property
     def t_end(self):
@@ -272,21 +298,37 @@ def _catch_stop_signals():
         return {}
 
 
-def run(test):
-    """Runs one swelling test inside YADE; writes results.json, tables, plots and VTK into test.out.
-    Order: Python checks, the plugin objects (kinds, solver: their constructors validate), then the
-    mesostructure, the (macro) calibration, the scene and the run."""
+def prepare(test):
+    """Checks everything before any work: test.validate(), then the plugin objects of the test
+    (the three ContactKinds and the solver), whose constructors check their values. Returns
+    (kinds, solver) for run(); ValueError in the one message form otherwise."""
     test.validate()
+    dem = _dem()
+    try:
+        kinds = make_kinds(test)
+    except TypeError as e:  # e.g. MORTAR.tensileStrength=abc: boost.python cannot make a double of it
+        text = {f"{n}.{a}": v for n, attrs in test.kind_params.items() for a, v in attrs.items() if isinstance(v, str)}
+        if len(text) == 1:
+            (name, value), = text.items()
+            _bad(name, value, f"a value of the attribute's type: a number, True/False or a name ({e})")
+        _bad("kind_params", test.kind_params, f"values of each attribute's type: a number, True/False or a name ({e})")
+    settings = dict(tStart=test.t_start_days, tEnd=test.t_end, stepsPerDecade=test.steps_per_decade, label="swelldemSolver")
+    if test.tolerance:  # 0 keeps the solver's own: the ADR's is an accuracy setting, the implicit solver's is round-off
+        settings["tolerance"] = test.tolerance
+    return kinds, dem.make_solver(test.solver, **settings)
+
+
+def run(test, prepared=None):
+    """Runs one swelling test inside YADE; writes results.json, tables, plots and VTK into test.out.
+    Order: prepare() (Python checks, then the plugin objects, whose constructors validate; pass
+    its result as `prepared` to check before other work), then the mesostructure, the (macro)
+    calibration, the scene and the run."""
+    kinds, solver = prepared or prepare(test)
     dem = _dem()
     from . import meso, report
     from .dem import recorder
     from .dem import scene as dem_scene
     t0 = time.time()
-    kinds = make_kinds(test)
-    settings = dict(tStart=test.t_start_days, tEnd=test.t_end, stepsPerDecade=test.steps_per_decade, label="swelldemSolver")
-    if test.tolerance:  # 0 keeps the solver's own: the ADR's is an accuracy setting, the implicit solver's is round-off
-        settings["tolerance"] = test.tolerance
-    solver = dem.make_solver(test.solver, **settings)
     os.makedirs(test.out, exist_ok=True)
     overrides = {} if test.aggregate_area_fraction < 0 else {"aggregate_area_fraction": test.aggregate_area_fraction}
     assembly = meso.generate(seed=test.seed, width_mm=test.size_mm[0], height_mm=test.size_mm[1], **overrides)
@@ -311,7 +353,7 @@ def run(test):
            "calibration": cal, "d_inf_m": d_inf, "r_mean_m": r_mean, "n_particles": int(len(assembly.x)),
            "n_contacts_by_kind": counts, "n_gel_pockets": int(len(gel)), "times_days": [], "swelling_strain_x": [],
            "swelling_strain_y": [], "unbalanced_ratio": [], "adr_iterations_per_step": [], "step_at_round_off": [], "adr_iterations": 0,
-           "per_kind": {n: {"fn_p05_kN": [], "fn_p95_kN": [], "broken": []} for n in paper.KIND_NAMES},
+           "per_kind": {n: {"fn_p05_kN": [], "fn_p95_kN": [], "broken": [], "born_broken": []} for n in paper.KIND_NAMES},
            "status": "running", "wall_s": 0.0}
     rec = recorder.StepRecorder(assembly, ys, solver, res, test.out, vtk_every=test.vtk_every)
     solver.stepHook = rec
@@ -335,5 +377,5 @@ def run(test):
             signal.signal(sig, handler)
     recorder.export_vtk(test.out)
     report.write_results(test.out, res)
-    report.write_all(test.out, res, assembly, recorder.broken_contacts())
+    report.write_all(test.out, res, assembly, recorder.broken_contacts(rec.bonded))
     return res

@@ -41,6 +41,7 @@ THIS = next(os.path.abspath(c) for c in (sys.argv[0], globals().get("__file__"),
 BENCH_DIR = os.path.dirname(THIS)
 REPO = os.path.dirname(os.path.dirname(BENCH_DIR))
 sys.path.insert(0, os.path.join(REPO, "py"))
+from swelldem import options, paper  # noqa: E402
 LAUNCHER = os.path.join(REPO, "scripts", "yade-swelldem")
 KINDS = ("MORTAR", "ITZ", "AGG")
 
@@ -392,19 +393,41 @@ ap.add_argument("--worker", action="store_true", help="internal: run one configu
 ap.add_argument("--scenario", help="internal (worker)")
 ap.add_argument("--run-dir", help="internal (worker)")
 ap.add_argument("--config", help="internal (worker): JSON settings")
-args = ap.parse_args(sys.argv[1:])
-args.out = os.path.abspath(args.out)
-if args.reference:
-    try:
-        changes = json.loads(args.reference)
+with options.refuse_bad("bench_accuracy.py"):  # every option before any run (NaN, infinity), exit 2
+    args = ap.parse_args(sys.argv[1:])
+    args.out = os.path.abspath(args.out)
+    for sc in args.scenarios:
+        options.choice("scenarios", sc, tuple(paper.SCENARIOS))
+    options.number("size_mm", args.size_mm, lo=0, unit="mm")
+    options.integer("seed", args.seed, lo=0)
+    if args.t_end_days != 0:
+        options.number("t_end_days", args.t_end_days, lo=1, unit="day", allowed="0 (the paper's end) or 1 < t_end_days < inf [day]")
+    options.integer("threads", args.threads, lo=1)
+    options.integer("verify", args.verify, lo=0)
+    options.number("timeout", args.timeout, lo=0, unit="s")
+    if args.reference:
+        try:
+            changes = json.loads(args.reference)
+        except json.JSONDecodeError as e:
+            changes = None
+            options.bad("reference", args.reference, f"a JSON object of {', '.join(REFERENCE)} ({e})")
         if not isinstance(changes, dict):
-            raise json.JSONDecodeError("not an object", args.reference, 0)
-    except json.JSONDecodeError as e:
-        sys.exit(f"bench_accuracy.py: --reference = {args.reference!r} is not JSON ({e}); allowed: an object of {', '.join(REFERENCE)}")
-    bad = {k: v for k, v in changes.items() if k not in REFERENCE or not isinstance(v, (int, float)) or v <= 0}
-    if bad:
-        sys.exit(f"bench_accuracy.py: --reference = {bad} is out of range; allowed: positive values of {', '.join(REFERENCE)}")
-    REFERENCE.update(changes)
+            options.bad("reference", args.reference, f"a JSON object of {', '.join(REFERENCE)}")
+        for k, v in changes.items():
+            options.choice("reference key", k, tuple(REFERENCE))
+            options.number(f"reference {k}", v, lo=0)
+        REFERENCE.update(changes)
+    for text in args.extra:
+        try:
+            extra = json.loads(text)
+        except json.JSONDecodeError as e:
+            extra = None
+            options.bad("extra", text, f"a JSON object of settings ({e})")
+        if not isinstance(extra, dict):
+            options.bad("extra", text, "a JSON object of settings")
+        for k, v in extra.items():
+            if not isinstance(v, str):
+                options.number(f"extra {k}", v, lo=0)
 if args.worker:
     worker(args)
 else:

@@ -57,7 +57,24 @@ ap.add_argument("--gsts-interval", type=int, default=1, help="GlobalStiffnessTim
 ap.add_argument("--repeat", type=int, default=3, help="solve both this many times; timings are medians")
 ap.add_argument("--threads", type=int, default=1, help="only when started from plain python3: -j of the relaunch")
 ap.add_argument("--out", default=os.path.join(C.REPO_DIR, "out", "bench", "adr_vs_yade.json"))
-args = ap.parse_args(sys.argv[1:])
+from swelldem import options  # noqa: E402  (_common put py/ on the path)
+
+with options.refuse_bad("bench_adr_vs_yade.py"):  # every option before any work (NaN, infinity), exit 2
+    args = ap.parse_args(sys.argv[1:])
+    options.integer("n_discs", args.n_discs, lo=2)
+    options.integer("seed", args.seed, lo=0)
+    options.number("aggregate_fraction", args.aggregate_fraction, lo=0, hi=1, lo_incl=True)
+    # loose tolerances are what this benchmark measures: range checked, no warning
+    options.numbers("tolerances", args.tolerances, lo=0, hi=1)
+    options.number("ref_tol", args.ref_tol, lo=0, hi=1)
+    options.numbers("err_targets", args.err_targets, lo=0)
+    options.integer("check_every", args.check_every, lo=1)
+    options.integer("max_iter", args.max_iter, lo=1)
+    options.number("damping", args.damping, lo=0, hi=1, lo_incl=True)
+    options.number("safety", args.safety, lo=0, hi=1, hi_incl=True)
+    options.integer("gsts_interval", args.gsts_interval, lo=1)
+    options.integer("repeat", args.repeat, lo=1)
+    options.integer("threads", args.threads, lo=1)
 
 if not C.in_yade():  # plain python3: relaunch under YADE with the plugin
     os.execv(C.LAUNCHER, [C.LAUNCHER, "-n", "-j", str(args.threads), "-x", THIS] + sys.argv[1:])
@@ -71,8 +88,6 @@ from swelldem import dem  # noqa: E402
 W = yade.wrapper
 O = yade.Omega()
 TOLS = sorted(set(args.tolerances), reverse=True)
-if args.check_every < 1 or not TOLS or min(TOLS) <= 0:
-    sys.exit("bench_adr_vs_yade.py: --check-every >= 1 and positive --tolerances are required")
 
 assembly = C.make_assembly(args.n_discs, seed=args.seed, aggregate_fraction=args.aggregate_fraction)
 n_c = len(assembly.contacts)

@@ -53,7 +53,17 @@ ap.add_argument("--chunks", type=int, default=10, help="timed chunks per build; 
 ap.add_argument("--threads", type=int, nargs="+", default=[1, 2])
 ap.add_argument("--out", default=os.path.join(C.REPO_DIR, "out", "bench", "law_cost.json"))
 ap.add_argument("--worker", action="store_true", help="internal: measure in this YADE process, print JSON")
-args = ap.parse_args(sys.argv[1:])
+from swelldem import options  # noqa: E402  (_common put py/ on the path)
+
+with options.refuse_bad("bench_law_cost.py"):  # every option before any work (NaN, infinity), exit 2
+    args = ap.parse_args(sys.argv[1:])
+    options.integer("n_discs", args.n_discs, lo=2)
+    options.integer("seed", args.seed, lo=0)
+    options.number("radius_scale", args.radius_scale, lo=1, hi=1.5, lo_incl=True)
+    for name in ("iters", "steps", "repeat", "chunks"):
+        options.integer(name, getattr(args, name), lo=1)
+    for t in args.threads:
+        options.integer("threads", t, lo=1)
 
 
 # ------------------------------------------------------------------------------------------ worker

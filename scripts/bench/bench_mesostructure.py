@@ -23,7 +23,7 @@ except ImportError:
             _repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(_cand))))
             sys.path.insert(0, os.path.join(_repo, "py"))
             break
-from swelldem import meso, paths  # noqa: E402
+from swelldem import meso, options, paths  # noqa: E402
 
 TARGET_S = 60.0
 
@@ -33,7 +33,11 @@ def main(argv=None):
     ap.add_argument("--repeat", type=int, default=3, help="generations to time (seeds 1..N)")
     ap.add_argument("--size-mm", nargs=2, type=float, default=(100.0, 100.0), metavar=("W", "H"))
     ap.add_argument("--json", default=os.path.join(paths.REPO_DIR, "out", "bench_mesostructure.json"))
-    args = ap.parse_args(sys.argv[1:] if argv is None else argv)
+    with options.refuse_bad("bench_mesostructure.py"):  # every option before any work (NaN, infinity), exit 2
+        args = ap.parse_args(sys.argv[1:] if argv is None else argv)
+        options.integer("repeat", args.repeat, lo=1)
+        options.numbers("size_mm", args.size_mm, count=2, lo=0, unit="mm")
+        meso.MesoParameters(width_mm=args.size_mm[0], height_mm=args.size_mm[1]).validate()  # the generator's own checks
     runs = []
     for seed in range(1, args.repeat + 1):
         t = time.perf_counter()

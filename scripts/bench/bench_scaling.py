@@ -243,7 +243,19 @@ ap.add_argument("--timeout", type=float, default=3600)
 ap.add_argument("--out", default=os.path.join(C.REPO_DIR, "out", "bench", "scaling.json"))
 ap.add_argument("--worker", action="store_true", help="internal: measure one (size, threads) in this YADE process")
 ap.add_argument("--size-mm", type=float, help="internal (worker)")
-args = ap.parse_args(sys.argv[1:])
+from swelldem import options  # noqa: E402  (_common put py/ on the path)
+
+with options.refuse_bad("bench_scaling.py"):  # every option before any work (NaN, infinity), exit 2
+    args = ap.parse_args(sys.argv[1:])
+    options.numbers("sizes_mm", args.sizes_mm, lo=0, unit="mm")
+    for t in args.threads:
+        options.integer("threads", t, lo=1)
+    options.integer("seed", args.seed, lo=0)
+    for name in ("iters", "steps", "max_step_iters"):
+        options.integer(name, getattr(args, name), lo=1)
+    options.number("timeout", args.timeout, lo=0, unit="s")
+    if args.size_mm is not None:
+        options.number("size_mm", args.size_mm, lo=0, unit="mm")
 if args.worker:
     worker(args)
 else:

@@ -21,6 +21,8 @@ import sys
 import time
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(REPO, "py"))
+from swelldem import options, paper  # noqa: E402
 
 
 def run_one(out, size, scenario, behaviour, damage, solver, tolerance, threads, seed):
@@ -77,13 +79,17 @@ def main():
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--out", default=os.path.join(REPO, "out", "bench", "solvers"))
-    a = ap.parse_args()
-    for name in ("adr_tolerance",):
-        v = getattr(a, name)
-        if not (v == 0 or 0 < v < 1):
-            sys.exit(f"bench_solvers.py: --{name.replace('_', '-')} = {v} is out of range; allowed: 0 or 0 < tol < 1")
-    if any(not (s > 0) for s in a.sizes_mm):
-        sys.exit(f"bench_solvers.py: --sizes-mm = {a.sizes_mm} is out of range; allowed: > 0 [mm]")
+    with options.refuse_bad("bench_solvers.py"):  # every option before any run (NaN, infinity), exit 2
+        a = ap.parse_args()
+        # a benchmark may measure a loose tolerance on purpose: range checked, no warning
+        options.tolerance("adr_tolerance", a.adr_tolerance, zero_means_default=True, useful_max=1.0)
+        options.numbers("sizes_mm", a.sizes_mm, lo=0, unit="mm")
+        for sc in a.scenarios:
+            options.choice("scenarios", sc, tuple(paper.SCENARIOS))
+        for be in a.behaviours:
+            options.choice("behaviours", be, ("elastic", "viscoelastic"))
+        options.integer("threads", a.threads, lo=1)
+        options.integer("seed", a.seed, lo=0)
     rows = []
     for size in a.sizes_mm:
         for sc in a.scenarios:

@@ -31,7 +31,7 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "py"))
-from swelldem import dem, measure, meso  # noqa: E402
+from swelldem import dem, measure, meso, options  # noqa: E402
 from swelldem.dem import uniaxial  # noqa: E402
 from swelldem.dem.uniaxial import count_per_kind, fit_modulus, stable_dt  # noqa: E402
 from swelldem.paper import AGGREGATE_YOUNG, KIND_NAMES, TENSILE_STRENGTH, larive_xi  # noqa: E402
@@ -290,13 +290,12 @@ def free_swelling(law, assembly, moduli, eps_inf=1000e-6, pattern="mortar", dama
     same swelling as ours at the end), linearly over `ramp_steps` Newton steps, then relaxed
     until utils.unbalancedForce() < tolerance. Both rest lengths grow by the same amount, so
     without damage the end states are the same equilibrium problem. Returns a dict (SI)."""
-    for name, value, ok, allowed in (("eps_inf", eps_inf, eps_inf >= 0, ">= 0"), ("tolerance", tolerance, tolerance > 0, "> 0"),
-                                     ("ramp_steps", ramp_steps, ramp_steps >= 1, ">= 1"),
-                                     ("max_steps", max_steps, max_steps >= ramp_steps, ">= ramp_steps"),
-                                     ("damping", damping, 0 <= damping < 1, "[0, 1)"),
-                                     ("steps_per_decade", steps_per_decade, steps_per_decade > 0, "> 0")):
-        if not ok:
-            raise ValueError(f"cohesive_laws.free_swelling: {name} = {value} is out of range; allowed: {allowed}")
+    options.number("eps_inf", eps_inf, lo=0, lo_incl=True)
+    options.tolerance("tolerance", tolerance)
+    options.integer("ramp_steps", ramp_steps, lo=1)
+    options.integer("max_steps", max_steps, lo=ramp_steps, allowed=f"an integer >= ramp_steps = {ramp_steps}")
+    options.number("damping", damping, lo=0, hi=1, lo_incl=True)
+    options.number("steps_per_decade", steps_per_decade, lo=0)
     yade, W = _yade()
     O = yade.Omega()
     t0 = time.time()

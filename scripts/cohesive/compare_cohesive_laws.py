@@ -24,7 +24,7 @@ sys.path[:0] = [HERE, os.path.join(os.path.dirname(os.path.dirname(HERE)), "py")
 import numpy as np  # noqa: E402
 
 import cohesive_laws as cc  # noqa: E402  (the study, beside this script)
-from swelldem import meso, scenario  # noqa: E402
+from swelldem import meso, options, scenario  # noqa: E402
 from swelldem.paper import KIND_NAMES, TENSILE_STRENGTH  # noqa: E402
 
 ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -41,15 +41,15 @@ ap.add_argument("--eps-inf", type=float, default=1000e-6, help="free-swelling ca
 ap.add_argument("--max-strain-compression", type=float, default=1.5e-3)
 ap.add_argument("--rate-check", action="store_true", help="also run swelldem and cpm in tension at half the rate")
 ap.add_argument("--out", default="out/cohesive_laws")
-args = ap.parse_args(sys.argv[1:])
-for name, value, ok, allowed in (("--size-mm", args.size_mm, min(args.size_mm) > 0, "> 0 (15 x 15 mm or more places the aggregates)"),
-                                 ("--deps", args.deps, 0 < args.deps < 1e-4, "(0, 1e-4): a quasi-static strain step"),
-                                 ("--damping", args.damping, 0 <= args.damping < 1, "[0, 1)"),
-                                 ("--beta", args.beta, args.beta >= 0, ">= 0 (0: measure it)"),
-                                 ("--eps-inf", args.eps_inf, args.eps_inf > 0, "> 0"),
-                                 ("--max-strain-compression", args.max_strain_compression, args.max_strain_compression > 0, "> 0")):
-    if not ok:
-        sys.exit(f"compare_cohesive_laws.py: {name} = {value} is out of range; allowed: {allowed}")
+with options.refuse_bad("compare_cohesive_laws.py"):  # every option before any work (NaN, infinity), exit 2
+    args = ap.parse_args(sys.argv[1:])
+    options.numbers("size_mm", args.size_mm, count=2, lo=0, allowed="two finite lengths > 0 [mm] (15 x 15 mm or more places the aggregates)")
+    options.integer("seed", args.seed, lo=0)
+    options.number("deps", args.deps, lo=0, hi=1e-4, allowed="0 < deps < 1e-4 [-] (a quasi-static strain step)")
+    options.number("damping", args.damping, lo=0, hi=1, lo_incl=True)
+    options.number("beta", args.beta, lo=0, lo_incl=True, allowed="0 (measure it) or a finite beta > 0")
+    options.number("eps_inf", args.eps_inf, lo=0)
+    options.number("max_strain_compression", args.max_strain_compression, lo=0)
 os.makedirs(args.out, exist_ok=True)
 t_start = time.time()
 

@@ -61,16 +61,18 @@ def test_extreme_runs_end_finite_in_equilibrium(tmp_path, name, args):
     ("swelling 100 times the paper's", ("--behaviour", "viscoelastic", "--eps-inf", "0.1")),
     ("all contacts broken", ("--behaviour", "elastic", "--strength-scale", "1e-9")),
 ])
-def test_extreme_runs_end_finite_or_stop_clearly(tmp_path, name, args):
+def test_extreme_runs_with_an_equilibrium_finish(tmp_path, name, args):
+    """Both have an equilibrium at every step (a cracked, loose or hugely swollen free specimen
+    carries no load it cannot balance), so the ADR must reach it: status 'finished', every step
+    below the tolerance, nothing but finite numbers. A run that stops here is a solver failure, not
+    an acceptable end (measured, 12 mm, N = 3: both finish, 11.8 s and 5.5 s, every step at or
+    below 1e-4). With all contacts broken, every bonded contact is counted broken, and only those."""
     p, res = run(tmp_path, *args)
     assert res is not None, "results.json is written from the first step on"
     assert finite(res), "no NaN is ever written"
-    if p.returncode == 0:
-        assert res["status"] == "finished"
-        assert in_equilibrium(res)
-    else:
-        assert res["status"].startswith("failed: swelldem: AdrLogTimeIntegrator stopped at physical step")
-        assert "AdrLogTimeIntegrator stopped at physical step" in p.stdout + p.stderr
-    if name == "all contacts broken" and p.returncode == 0:
-        n = res["n_contacts_by_kind"]
-        assert sum(res[f"broken_{k}"][-1] for k in n) >= 0.95 * sum(n.values())
+    assert_finished_in_equilibrium(p, res)
+    n = res["n_contacts_by_kind"]
+    for k in n:
+        assert all(b <= n[k] for b in res[f"broken_{k}"]), (k, "only the bonded contacts can break")
+    if name == "all contacts broken":
+        assert all(res[f"broken_{k}"][-1] == n[k] for k in n), {k: (res[f"broken_{k}"][-1], n[k]) for k in n}

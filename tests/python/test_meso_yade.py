@@ -11,7 +11,7 @@ import pytest
 
 from conftest import LAUNCHER, REPO, build_dir
 
-from swelldem import measure, meso  # noqa: E402  (conftest puts py/ on the path)
+from swelldem import measure, meso, paper  # noqa: E402  (conftest puts py/ on the path)
 
 TABLE_SCRIPT = os.path.join(REPO, "scripts", "table_3_2.py")
 
@@ -277,14 +277,16 @@ def test_table_3_2_small_free_swelling(tmp_path):
     assert res["n_particles"] == a.n_particles and res["r_mean_m"] == pytest.approx(a.r.mean(), rel=1e-12)
     assert res["d_inf_m"] == pytest.approx(1000e-6 * 2 * a.r.mean(), rel=1e-12)
     eps, ex, ey = res["eps_final"], res["eps_final_x"], res["eps_final_y"]
-    # Band (docs/mesostructure.md, "Into YADE"): an affine expansion e in equilibrium gives
-    # e = d_inf / L_A, L_A the facet-area-weighted mean contact length, which exceeds 2 R_mean by
-    # 1-1.5 % (contacts favour large discs, some have a gap): e = 0.986-0.990 x 1000e-6 for these
-    # assemblies. The non-affine relaxation of the disordered network lowers it by 0-0.8 %
-    # (measured, 8 x 8 mm seeds 1-5: 981.1-986.8e-6; 20 x 20 mm seeds 1-3: 984.0-985.2e-6).
-    # Band: 960e-6 .. 1005e-6, and within 2 % of the affine estimate of this very assembly.
-    # The paper's 1061e-6 is outside it on purpose (see the docs).
-    assert 960e-6 <= eps <= 1005e-6
+    # The paper's Table 3.2: 1061e-6 with d_inf = 1000e-6 x 2 R_mean. Ours is below it: measured
+    # -7.5 % here (981.1e-6, 8 x 8 mm seed 1, N = 5), -7.0 to -7.5 % over seeds 1-5 at 8 x 8 mm and
+    # -7.1 to -7.3 % over seeds 1-3 at 20 x 20 mm (docs/mesostructure.md explains the gap: the
+    # paper's figure needs contacts 7 % shorter than 2 R_mean). Tolerance: the largest measured
+    # error, 7.5 %, plus a margin of 1 point (twice the seed-to-seed spread of 0.5 %).
+    assert res["paper_eps_final"] == paper.TABLE_3_2_EPS_FINAL == 1061e-6
+    assert abs(eps / paper.TABLE_3_2_EPS_FINAL - 1) <= 0.085, eps
+    assert eps < paper.TABLE_3_2_EPS_FINAL
+    # An affine expansion e in equilibrium gives e = d_inf / L_A, L_A the facet-area-weighted mean
+    # contact length; the non-affine relaxation of the disordered network lowers it by 0-0.8 %.
     L_A = (a.facet_area_m2 * a.distance_m).sum() / a.facet_area_m2.sum()
     assert eps == pytest.approx(res["d_inf_m"] / L_A, rel=0.02)
     assert abs(ex - ey) <= 0.03 * eps      # isotropic within 3 % (measured 8 mm seeds 1-5: 0.5-2.1 %; 20 mm: 0.6 %)

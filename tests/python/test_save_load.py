@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 """O.save / O.load round trips (xml, binary, bz2, memory) of a running swelldem scene holding every
-plugin class: every attribute comes back, and the reloaded run continues exactly as the
+plugin class: every attribute comes back, nested objects compared by value, and the reloaded run continues exactly as the
 uninterrupted one (mid physical step, through AdrLogTimeIntegrator)."""
 import pytest
 
@@ -27,9 +27,14 @@ def build():
                             Law2_ScGeom_SwellPhys_AgingSwelling(), solver, detection_factor=1.05,
                             extra_engines=[SwelldemAbiProbe(label='probe')])
 
-def value(v):
-    if hasattr(v, 'dict') and callable(v.dict): return type(v).__name__ + ':' + str(sorted(v.dict().keys()))
-    if hasattr(v, '__len__') and not isinstance(v, str): return [value(x) for x in v]
+def value(v, depth=0):
+    # nested objects (an Ip2's kinds, a phys's kind, the dispatchers' functors) by value, attribute
+    # by attribute; the depth bound only guards against a reference cycle
+    if hasattr(v, 'dict') and callable(v.dict):
+        if depth > 4: return type(v).__name__
+        return {'__class__': type(v).__name__, **{k: value(x, depth + 1) for k, x in v.dict().items()}}
+    if isinstance(v, float) and v != v: return 'nan'  # NaN != NaN: compare its text
+    if hasattr(v, '__len__') and not isinstance(v, str): return [value(x, depth) for x in v]
     return v
 
 def snapshot():

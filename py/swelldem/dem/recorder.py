@@ -17,10 +17,23 @@ def _yade():
     return require("swelldem.dem.recorder")
 
 
-def contact_arrays():
-    """(kindId, Fn [N], broken) of every real interaction in O, as numpy arrays."""
+def _pair(i):
+    return (i.id1, i.id2) if i.id1 < i.id2 else (i.id2, i.id1)
+
+
+def bonded_pairs():
+    """The (id1, id2) pairs (id1 < id2) of the real, unbroken interactions of O: the bonded contacts
+    at the start of a run, the only ones that can break. Contacts the collider makes during the run
+    are born broken (cohesionless, compression only) and are counted apart."""
     yade, _ = _yade()
-    kind, fn, broken = [], [], []
+    return frozenset(_pair(i) for i in yade.Omega().interactions if i.isReal and not i.phys.broken)
+
+
+def contact_arrays(bonded=None):
+    """(kindId, Fn [N], broken, bonded) of every real interaction in O, as numpy arrays; bonded[c]
+    is whether the interaction's pair is in `bonded` (bonded_pairs() at the start; None: all)."""
+    yade, _ = _yade()
+    kind, fn, broken, was_bonded = [], [], [], []
     for i in yade.Omega().interactions:
         if not i.isReal:
             continue
@@ -28,21 +41,26 @@ def contact_arrays():
         kind.append(p.kindId)
         fn.append(p.Fn)
         broken.append(p.broken)
-    return np.array(kind, dtype=int), np.array(fn), np.array(broken, dtype=bool)
+        was_bonded.append(bonded is None or _pair(i) in bonded)
+    return np.array(kind, dtype=int), np.array(fn), np.array(broken, dtype=bool), np.array(was_bonded, dtype=bool)
 
 
-def broken_contacts():
-    """(id1, id2, kindId) of every broken real interaction in O (the crack map's input)."""
+def broken_contacts(bonded=None):
+    """(id1, id2, kindId) of every broken real interaction in O whose pair is in `bonded` (None: all):
+    the crack map's input."""
     yade, _ = _yade()
-    return [(i.id1, i.id2, i.phys.kindId) for i in yade.Omega().interactions if i.isReal and i.phys.broken]
+    return [(i.id1, i.id2, i.phys.kindId) for i in yade.Omega().interactions
+            if i.isReal and i.phys.broken and (bonded is None or _pair(i) in bonded)]
 
 
 class StepRecorder:
     """Per converged physical step, appends to the results dict `res`: time [day], the swelling
     strains (affine fit of the skeleton's displacements), the unbalanced-force ratio, the step's
     iterations and round-off flag, and per contact kind the 5 % / 95 % normal-force quantiles
-    [kN] and the broken contacts; then rewrites results.json in `out` (a run that stops later
-    keeps what it had) and, every vtk_every steps, the VTK files."""
+    [kN], the broken contacts (bonded at the start, broken since) and the contacts made during
+    the run (born broken, 'born_broken', present at the step); then rewrites results.json in `out`
+    (a run that stops later keeps what it had) and, every vtk_every steps, the VTK files. Made
+    before the run starts: it takes the bonded contacts from O then."""
 
     def __init__(self, assembly, yscene, solver, res, out, vtk_every=0):
         self.a, self.ys, self.solver, self.res, self.out, self.vtk_every = assembly, yscene, solver, res, out, vtk_every
@@ -51,10 +69,11 @@ class StepRecorder:
         # specimen's sides during packing) are loose in a free specimen and do not follow it.
         self.weights = np.where(assembly.coordination() >= 2, assembly.r ** 2, 0.0)
         self.t0 = time.time()
+        self.bonded = bonded_pairs()
 
     def __call__(self):
         s = affine_strain(self.ref, self.ys.positions(), weights=self.weights)
-        kind, fn, broken = contact_arrays()
+        kind, fn, broken, bonded = contact_arrays(self.bonded)
         r, solver = self.res, self.solver
         r["times_days"].append(solver.physTime)
         r["swelling_strain_x"].append(s["eps_xx"])
@@ -68,7 +87,8 @@ class StepRecorder:
             q05, q95 = (np.quantile(fn[sel], [0.05, 0.95]) / 1e3).tolist() if sel.any() else (float("nan"),) * 2
             r["per_kind"][name]["fn_p05_kN"].append(q05)
             r["per_kind"][name]["fn_p95_kN"].append(q95)
-            r["per_kind"][name]["broken"].append(int(broken[sel].sum()))
+            r["per_kind"][name]["broken"].append(int((broken & bonded)[sel].sum()))
+            r["per_kind"][name].setdefault("born_broken", []).append(int((~bonded)[sel].sum()))
         r["adr_iterations"] = solver.totalIterations
         r["wall_s"] = time.time() - self.t0
         r["updated"] = time.time()  # [s since the epoch] of the last step written: a killed run stays "running"

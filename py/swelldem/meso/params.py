@@ -43,7 +43,11 @@ class MesoParameterError(ValueError):
         self.name = name
         self.value = value
         self.allowed = allowed
-        super().__init__(f"mesostructure parameter {name} = {value!r} is invalid: {allowed}")
+        # the one message form of every swelldem setting (swelldem.options)
+        for lead in ("must be ", "allowed range "):
+            if allowed.startswith(lead):
+                allowed = allowed[len(lead):]
+        super().__init__(f"swelldem: {name} = {value!r} is out of range; allowed: {allowed}")
 
 
 @dataclass(frozen=True)

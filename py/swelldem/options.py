@@ -1,0 +1,131 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""Checks of user-given settings with one message form, shared by the scenarios and every script:
+
+    swelldem: <name> = <value> is out of range; allowed: <range>
+
+<name> is the setting's Python name (the option --eps-inf is eps_inf), <value> its repr (nan and
+inf included). The plugin's constructors word their ValueErrors the same way, so a script can
+treat both alike: `with options.refuse_bad("table_3_2.py"): ...` prints the message and exits
+with status 2 (argparse's status for a bad command line) before any work starts.
+
+Plain Python: it runs without YADE.
+"""
+import contextlib
+import math
+import numbers as _numbers
+import sys
+
+#: The loosest ADR tolerance still worth running: docs/performance.md section 1 measures 3-6 % force
+#: error at 1e-3 and 11-15 % at 1e-2 ("useless"); a looser value warns.
+USEFUL_TOLERANCE_MAX = 1e-3
+
+
+class OptionError(ValueError):
+    """A setting out of its allowed range (a ValueError, as the plugin's own checks raise)."""
+
+
+def message(name, value, allowed):
+    return f"swelldem: {name} = {value!r} is out of range; allowed: {allowed}"
+
+
+def bad(name, value, allowed):
+    raise OptionError(message(name, value, allowed))
+
+
+def is_number(v):
+    return isinstance(v, _numbers.Real) and not isinstance(v, bool)
+
+
+def _range_text(name, lo, hi, lo_incl, hi_incl, unit):
+    parts = []
+    if lo is not None:
+        parts.append(f"{lo:g} {'<=' if lo_incl else '<'}")
+    parts.append(name)
+    if hi is not None:
+        parts.append(f"{'<=' if hi_incl else '<'} {hi:g}")
+    elif lo is not None:
+        parts.append("< inf")
+    text = " ".join(parts) if lo is not None or hi is not None else f"a finite number ({name})"
+    return text + (f" [{unit}]" if unit else "")
+
+
+def number(name, value, lo=None, hi=None, lo_incl=False, hi_incl=False, unit=None, allowed=None):
+    """`value` as a float if it is a finite number within (lo, hi) (bounds included with
+    lo_incl / hi_incl; None: unbounded), else OptionError. NaN and infinity are always refused:
+    no setting of swelldem means anything at either."""
+    ok = is_number(value) and math.isfinite(value)
+    if ok and lo is not None:
+        ok = value >= lo if lo_incl else value > lo
+    if ok and hi is not None:
+        ok = value <= hi if hi_incl else value < hi
+    if not ok:
+        bad(name, value, allowed or _range_text(name, lo, hi, lo_incl, hi_incl, unit))
+    return float(value)
+
+
+def integer(name, value, lo=None, hi=None, allowed=None):
+    """`value` if it is an integer (not a bool) in [lo, hi] (None: unbounded), else OptionError."""
+    ok = isinstance(value, _numbers.Integral) and not isinstance(value, bool)
+    if ok and lo is not None:
+        ok = value >= lo
+    if ok and hi is not None:
+        ok = value <= hi
+    if not ok:
+        if allowed is None:
+            allowed = "an integer" + (f" >= {lo}" if lo is not None else "") + (f" <= {hi}" if hi is not None else "")
+        bad(name, value, allowed)
+    return int(value)
+
+
+def numbers(name, values, count=None, **limits):
+    """A tuple of finite numbers, each as number() checks it, `count` of them if given; the message
+    shows the whole list (e.g. size_mm = (12.0, nan))."""
+    values = tuple(values)
+    try:
+        if count is not None and len(values) != count:
+            raise OptionError("count")
+        for v in values:
+            number(name, v, **limits)
+    except OptionError:
+        if limits.get("allowed"):
+            bad(name, values, limits["allowed"])
+        rng = _range_text(name, limits.get("lo"), limits.get("hi"), limits.get("lo_incl", False), limits.get("hi_incl", False),
+                          limits.get("unit"))
+        bad(name, values, (f"{count} numbers, each " if count else "numbers, each ") + rng)
+    return tuple(float(v) for v in values)
+
+
+def choice(name, value, allowed):
+    """`value` if it is one of `allowed`, else OptionError listing them."""
+    if value not in allowed:
+        bad(name, value, ", ".join(str(a) for a in allowed))
+    return value
+
+
+def tolerance(name, value, zero_means_default=False, useful_max=USEFUL_TOLERANCE_MAX):
+    """An unbalanced-force tolerance: 0 < value < 1 (or 0 when zero_means_default); a value looser
+    than `useful_max` is accepted but warns on stderr, since the run then reports an
+    equilibrium it has not reached (docs/performance.md section 1)."""
+    if zero_means_default and is_number(value) and value == 0:
+        return 0.0
+    number(name, value, lo=0, hi=1, allowed=("0 (the solver's own) or " if zero_means_default else "") + f"0 < {name} < 1")
+    if value > useful_max:
+        warn_loose_tolerance(name, value, useful_max)
+    return float(value)
+
+
+def warn_loose_tolerance(name, value, useful_max=USEFUL_TOLERANCE_MAX):
+    """One line on stderr (where a script's user looks; Python's warnings filter could hide it)."""
+    sys.stderr.write(f"swelldem: warning: {name} = {value!r} is looser than the useful range (<= {useful_max:g}; "
+                     f"docs/performance.md section 1: 1e-3 leaves 3-6 % error on the forces, 1e-2 11-15 %); the run goes on\n")
+
+
+@contextlib.contextmanager
+def refuse_bad(prog):
+    """Inside the block, a ValueError (a swelldem check or a plugin constructor) ends the program:
+    '<prog>: <message>' on stderr and exit status 2, with no traceback."""
+    try:
+        yield
+    except ValueError as e:
+        sys.stderr.write(f"{prog}: {e}\n")
+        sys.exit(2)

@@ -1,0 +1,223 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""Issue 14, bad input: every script checks all its options (NaN and infinity included) before any
+work, with one message form and exit status 2; the table scripts refuse malformed results.json
+files by name and mark runs that did not finish. Mostly plain Python; the scripts that need YADE
+run through the launcher and stop at their checks (a few seconds each)."""
+import dataclasses
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+
+import pytest
+
+from conftest import LAUNCHER, REPO, build_dir
+
+from swelldem import options, report, scenario  # noqa: E402  (conftest puts py/ on the path)
+
+FORM = "swelldem: {} = {} is out of range; allowed: "
+
+
+# ------------------------------------------------------------------ the shared checks
+
+@pytest.mark.parametrize("value", [math.nan, math.inf, -math.inf, -1.0, "3", True, None])
+def test_number_refuses_what_is_not_a_finite_value_in_range(value):
+    with pytest.raises(options.OptionError) as e:
+        options.number("eps_inf", value, lo=0)
+    assert str(e.value) == FORM.format("eps_inf", repr(value)) + "0 < eps_inf < inf"
+
+
+def test_number_bounds_and_message():
+    assert options.number("x", 0.0, lo=0, lo_incl=True) == 0.0
+    assert options.number("x", 1.0, lo=0, hi=1, hi_incl=True) == 1.0
+    with pytest.raises(options.OptionError, match=r"^swelldem: x = 1.0 is out of range; allowed: 0 < x < 1 \[mm\]$"):
+        options.number("x", 1.0, lo=0, hi=1, unit="mm")
+    with pytest.raises(options.OptionError, match=r"size_mm = \(12.0, nan\) is out of range; allowed: 2 numbers, each 0 < size_mm"):
+        options.numbers("size_mm", (12.0, math.nan), count=2, lo=0)
+    with pytest.raises(options.OptionError, match=r"size_mm = \(12.0,\) is out of range"):
+        options.numbers("size_mm", (12.0,), count=2, lo=0)
+    with pytest.raises(options.OptionError, match=r"seed = 1.5 is out of range; allowed: an integer >= 0"):
+        options.integer("seed", 1.5, lo=0)
+    assert isinstance(options.OptionError("x"), ValueError), "scripts treat the plugin's ValueErrors and these alike"
+
+
+def test_a_loose_tolerance_warns_on_stderr(capsys):
+    assert options.tolerance("tolerance", 1e-3) == 1e-3
+    assert capsys.readouterr().err == ""
+    assert options.tolerance("tolerance", 0.9) == 0.9
+    err = capsys.readouterr().err
+    assert "swelldem: warning: tolerance = 0.9 is looser than the useful range (<= 0.001" in err and "docs/performance.md" in err
+    assert options.tolerance("tolerance", 0, zero_means_default=True) == 0.0
+    for bad in (0, 1, math.nan, math.inf):
+        with pytest.raises(options.OptionError, match="tolerance = .* is out of range; allowed: 0 < tolerance < 1"):
+            options.tolerance("tolerance", bad)
+
+
+def test_refuse_bad_exits_2_with_the_message(capsys):
+    with pytest.raises(SystemExit) as e:
+        with options.refuse_bad("prog.py"):
+            options.number("young", math.inf, lo=0, unit="Pa")
+    assert e.value.code == 2
+    assert capsys.readouterr().err == "prog.py: swelldem: young = inf is out of range; allowed: 0 < young < inf [Pa]\n"
+
+
+NUMERIC_FIELDS = [f.name for f in dataclasses.fields(scenario.SwellingTest) if f.type in (float, "float")]
+
+
+@pytest.mark.parametrize("bad", [math.nan, math.inf])
+@pytest.mark.parametrize("name", NUMERIC_FIELDS)
+def test_every_numeric_field_of_a_swelling_test_refuses_nan_and_infinity(name, bad):
+    """Every float field, including any added later (the list is read from the dataclass)."""
+    assert len(NUMERIC_FIELDS) >= 10
+    test = scenario.SwellingTest(**{name: bad})
+    with pytest.raises(options.OptionError, match="^" + FORM.format(name, repr(bad)).replace("(", r"\(")):
+        test.validate()
+
+
+# ------------------------------------------------------------------ scripts
+
+def _refused(cmd, needle, out_dir):
+    p = subprocess.run(cmd, capture_output=True, text=True, timeout=300, cwd=REPO,
+                       env={**os.environ, "SWELLDEM_BUILD_DIR": build_dir(), "PYTHONPATH": os.path.join(REPO, "py")})
+    assert p.returncode == 2, (p.returncode, p.stdout[-1500:], p.stderr[-1500:])
+    assert needle in p.stderr, p.stderr[-2000:]
+    assert "Traceback" not in p.stderr
+    assert not out_dir.exists() or not any(out_dir.iterdir()), "nothing is written before the checks pass"
+
+
+YADE_SCRIPTS = [
+    # the issue's cases: NaN passed the Python check and switched swelling off, or reached the plugin late
+    ("table_3_2.py", ("--eps-inf", "nan"), "table_3_2.py: " + FORM.format("eps_inf", "nan")),
+    ("table_3_2.py", ("--size-mm", "nan", "10"), "table_3_2.py: " + FORM.format("size_mm", "(nan, 10.0)")),
+    ("table_3_2.py", ("--tolerance", "inf"), FORM.format("tolerance", "inf")),
+    ("table_3_2.py", ("--t-start", "5000"), FORM.format("t_start", "5000.0") + "0 < t_start < 3650"),
+    ("table_3_2.py", ("--young", "nan"), FORM.format("young", "nan")),
+    ("table_3_2.py", ("--steps-per-decade", "20000"), "stepsPerDecade = 20000 is out of range"),  # the plugin's check, still first
+    ("two_particles.py", ("--steps-per-decade", "nan"), FORM.format("steps_per_decade", "nan")),
+    ("two_particles.py", ("--t-start", "inf"), FORM.format("t_start", "inf")),
+]
+
+
+@pytest.mark.parametrize("script,args,needle", YADE_SCRIPTS, ids=[f"{s}{' '.join(a)}" for s, a, _ in YADE_SCRIPTS])
+def test_yade_scripts_refuse_bad_options_before_work(tmp_path, script, args, needle):
+    out = tmp_path / "out"
+    _refused([LAUNCHER, "-j", "1", "-n", "-x", os.path.join(REPO, "scripts", script), *args, "--out", str(out)], needle, out)
+
+
+PLAIN_SCRIPTS = [
+    ("make_mesostructure.py", ("--thickness-m", "nan", "--out", "{out}"), FORM.format("thickness_m", "nan")),
+    ("make_mesostructure.py", ("--size-mm", "inf", "10", "--out", "{out}"), FORM.format("width_mm", "inf")),
+    ("bench/bench_mesostructure.py", ("--size-mm", "10", "nan", "--json", "{out}/b.json"), FORM.format("size_mm", "(10.0, nan)")),
+    ("bench/bench_solvers.py", ("--adr-tolerance", "nan", "--out", "{out}"), FORM.format("adr_tolerance", "nan")),
+    ("bench/bench_accuracy.py", ("--size-mm", "inf", "--out", "{out}"), FORM.format("size_mm", "inf")),
+    ("bench/bench_accuracy.py", ("--reference", '{"tolerance": -1}', "--out", "{out}"), FORM.format("reference tolerance", "-1")),
+    ("bench/bench_adr_vs_yade.py", ("--tolerances", "1e-3", "nan", "--out", "{out}/a.json"), FORM.format("tolerances", "(0.001, nan)")),
+    ("bench/bench_law_cost.py", ("--radius-scale", "nan", "--out", "{out}/l.json"), FORM.format("radius_scale", "nan")),
+    ("bench/bench_scaling.py", ("--sizes-mm", "20", "inf", "--out", "{out}/s.json"), FORM.format("sizes_mm", "(20.0, inf)")),
+    ("cohesive/compare_cohesive_laws.py", ("--deps", "nan", "--out", "{out}"), FORM.format("deps", "nan")),
+    ("cohesive/compare_cohesive_laws.py", ("--eps-inf", "inf", "--out", "{out}"), FORM.format("eps_inf", "inf")),
+]
+
+
+@pytest.mark.parametrize("script,args,needle", PLAIN_SCRIPTS, ids=[f"{s}{' '.join(a[:2])}" for s, a, _ in PLAIN_SCRIPTS])
+def test_plain_scripts_refuse_bad_options_before_work(tmp_path, script, args, needle):
+    out = tmp_path / "out"
+    cmd = [sys.executable, os.path.join(REPO, "scripts", script)] + [a.replace("{out}", str(out)) for a in args]
+    _refused(cmd, needle, out)
+
+
+# ------------------------------------------------------------------ the table scripts' input
+
+def results(status="finished", **changes):
+    """A small results.json of a swelling test (two steps), as swelldem.scenario writes it."""
+    per_kind = {k: {"fn_p05_kN": [-1.0, -2.0], "fn_p95_kN": [1.0, 2.0], "broken": [0, b], "born_broken": [0, 1]}
+                for k, b in (("MORTAR", 3), ("ITZ", 5), ("AGG", 1))}
+    res = {"scenario": "isr", "behaviour": "viscoelastic", "damage": True, "status": status, "times_days": [10.0, 100.0],
+           "swelling_strain_x": [1e-4, 2e-4], "swelling_strain_y": [1e-4, 2e-4], "n_particles": 100,
+           "n_contacts_by_kind": {"MORTAR": 100, "ITZ": 20, "AGG": 30}, "per_kind": per_kind, "adr_iterations": 10,
+           "wall_s": 2.0, "updated": time.time()}
+    res.update(changes)
+    return res
+
+
+def write(folder, content):
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / "results.json").write_text(content if isinstance(content, str) else json.dumps(content))
+    return folder
+
+
+def compare(tmp_path, ref, *runs):
+    return subprocess.run([sys.executable, os.path.join(REPO, "scripts", "compare_runs.py"), "--reference", str(ref),
+                           *map(str, runs), "--out", str(tmp_path / "cmp")], capture_output=True, text=True, timeout=120)
+
+
+BAD_FILES = {
+    "truncated": (json.dumps(results())[:300], "truncated or malformed JSON (Unterminated string"),
+    "not JSON": ("status: finished\n", "truncated or malformed JSON (Expecting value: line 1 column 1"),
+    "a list": ("[1, 2, 3]", "a JSON list, not an object"),
+    "foreign": (json.dumps({"case": "isr", "eps_final": 1e-3}), "not a swelling test's results.json (scripts/swelling_test.py): no scenario"),
+    "per-kind series short": (json.dumps(results(times_days=[1.0, 10.0, 100.0])), "per_kind MORTAR lacks one of fn_p05_kN"),
+}
+
+
+@pytest.mark.parametrize("case", list(BAD_FILES))
+def test_table_scripts_refuse_a_bad_results_json_by_name(tmp_path, case):
+    content, needle = BAD_FILES[case]
+    good = write(tmp_path / "good", results())
+    bad = write(tmp_path / "isr-ve-dmg", content)
+    for p, who in ((compare(tmp_path, good, bad), "compare_runs.py"),
+                   (subprocess.run([sys.executable, os.path.join(REPO, "scripts", "paper_tables.py"), str(tmp_path)],
+                                   capture_output=True, text=True, timeout=120), "paper_tables.py")):
+        assert p.returncode == 1, (who, p.returncode, p.stderr[-2000:])
+        assert f"{who}: {bad / 'results.json'}: " in p.stderr and needle in p.stderr, (who, p.stderr[-2000:])
+        assert "Traceback" not in p.stderr
+    assert compare(tmp_path, good, tmp_path / "missing").stderr.startswith(f"compare_runs.py: {tmp_path / 'missing' / 'results.json'}: cannot be read")
+
+
+def test_run_state():
+    now = 1.0e9
+    assert report.run_state(results()) == "finished"
+    assert report.run_state(results("failed: swelldem: stopped")) == "failed: swelldem: stopped"
+    assert report.run_state(results("interrupted: SIGTERM")) == "interrupted: SIGTERM"
+    assert report.run_state(results("running", updated=now - 30), now).startswith("running (last update")
+    # a run killed outright (SIGKILL) stays 'running'; an old update says the process is gone
+    assert report.run_state(results("running", updated=now - 7200), now) == "unfinished (last update 2001-09-08 23:46:40 UTC)"
+    # slow runs: 10 x the mean step time before a run is taken for dead (here 2 steps in 1000 s)
+    assert report.run_state(results("running", updated=now - 3000, wall_s=1000.0), now).startswith("running")
+    assert report.run_state(results("running", updated=None), now) == "unfinished (no update time)"
+
+
+def test_compare_runs_marks_runs_that_did_not_finish(tmp_path):
+    ref = write(tmp_path / "ref", results(behaviour="elastic", damage=False))
+    dead = write(tmp_path / "dead", results("running", updated=time.time() - 7200))
+    failed = write(tmp_path / "failed", results("failed: swelldem: AdrLogTimeIntegrator stopped at physical step 7"))
+    p = compare(tmp_path, ref, dead, failed)
+    assert p.returncode == 0, p.stderr
+    md = (tmp_path / "cmp" / "compare.md").read_text()
+    rows = [line for line in md.splitlines() if line.startswith("| viscoelastic")]
+    assert len(rows) == 6 and all(r.startswith("| viscoelastic † |") for r in rows)
+    assert sum("unfinished (last update " in r for r in rows) == 3
+    assert sum("failed: swelldem: AdrLogTimeIntegrator stopped" in r for r in rows) == 3
+    assert "† not finished: the numbers are those of the run's last step done" in md
+    assert all(r.endswith("| finished |") for r in md.splitlines() if r.startswith("| elastic"))
+    csv_rows = list(__import__("csv").DictReader(open(tmp_path / "cmp" / "compare.csv")))
+    assert [r["run"] for r in csv_rows].count("finished") == 3 and {r["t_last_days"] for r in csv_rows} == {"100.0"}
+
+
+def test_paper_tables_marks_runs_that_did_not_finish(tmp_path):
+    write(tmp_path / "isr-el-dmg", results("interrupted: SIGINT", behaviour="elastic"))
+    write(tmp_path / "isr-ve-dmg", results())
+    p = subprocess.run([sys.executable, os.path.join(REPO, "scripts", "paper_tables.py"), str(tmp_path)],
+                       capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, p.stderr
+    lines = p.stdout.splitlines()
+    el = [r for r in lines if r.startswith("| ISR | elastic (")]
+    ve = [r for r in lines if r.startswith("| ISR | aging viscoelastic |") and "(not run)" not in r]
+    assert len(el) == 3 and all("(interrupted: SIGINT) †" in r for r in el)
+    assert len(ve) == 3
+    assert any(r.startswith("| isr-el-dmg |") and r.endswith("| interrupted: SIGINT |") for r in lines)
+    # broken of the bonded contacts (3 of 100 MORTAR), the one new contact per kind apart
+    assert any(r.startswith("| ISR | aging viscoelastic | MORTAR |") and "| 3.0 |" in r for r in lines)
+    assert any(r.startswith("| isr-ve-dmg |") and "| 3 | finished |" in r for r in lines)
