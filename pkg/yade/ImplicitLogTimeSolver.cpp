@@ -72,8 +72,10 @@ ImplicitLogTimeSolver::ImplicitLogTimeSolver()
 	// Newton needs a residual that depends on the state reached, not on the iterations' path
 	shearFromStepStart = true;
 	progressDetail     = [this] {
-                return " (" + std::to_string(relaxationIterations - relaxationAtStepStart) + " relaxation, "
-                       + std::to_string(factorizations - factorizationsAtStepStart) + " factorizations)";
+		return " (" + std::to_string(relaxationIterations - relaxationAtStepStart) + " relaxation, "
+		       + std::to_string(factorizations - factorizationsAtStepStart) + " factorizations"
+		       + (activeChanges > 0 ? ", " + std::to_string(activeChanges) + " contacts changing state in the last iteration" : std::string())
+		       + ")";
 	};
 }
 

@@ -311,7 +311,8 @@ LogTimeSolver::StepOutcome LogTimeSolver::settleStep(const Balance& b, bool conv
 		fail("diverged: unbalanced-force ratio " + num(b.ratio) + " > divergenceRatio " + num(divergenceRatio));
 	if (iterInStep - roundStart >= maxIterations)
 		fail("no equilibrium after maxIterations = " + std::to_string(maxIterations) + " iterations" + (roundStart > 0 ? " since the last breaks" : "")
-		     + " (unbalanced-force ratio " + num(b.ratio) + ", tolerance " + num(tolerance) + ")");
+		     + " (unbalanced-force ratio " + num(b.ratio) + ", tolerance " + num(tolerance) + ")"
+		     + (progressDetail ? "; in this step" + progressDetail() : std::string()));
 	return out;
 }
 
