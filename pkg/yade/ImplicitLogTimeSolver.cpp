@@ -18,6 +18,7 @@ struct ImplicitLinearSystem {
 	std::vector<int>                                   slots;      // per contact, the 21 entries of its 6 x 6 lower triangle (-1: held)
 	std::vector<int>                                   diagSlot;   // per equation
 	std::vector<char>                                  active;     // per contact: its core::ContactLaw::Mode
+	std::vector<Real>                                  radius;     // per body, from its contacts' geometry
 	std::vector<double>                                factored;   // values of the current factor
 	SpMat                                              K;
 	Eigen::CholmodDecomposition<SpMat, Eigen::Lower>   chol;
@@ -227,7 +228,8 @@ void ImplicitLogTimeSolver::newtonStep()
 	};
 	std::vector<SlidingCoupling> sliding;
 	double            kScale  = 0;                      // mean step stiffness kn'' of the contacts
-	std::vector<Real> radius(bodies.size(), 0.0);      // from the contacts' geometry (the shape is not declared here)
+	std::vector<Real>& radius = S.radius;               // from the contacts' geometry (the shape is not declared here)
+	radius.assign(bodies.size(), 0.0);
 	for (size_t c = 0; c < contacts.size(); ++c) {
 		const Interaction* I = contacts[c];
 		const auto*        g = static_cast<const ScGeom*>(I->geom.get());
@@ -264,7 +266,9 @@ void ImplicitLogTimeSolver::newtonStep()
 		d += d > 0 ? regularization * d : (kScale > 0 ? kScale : 1.0);
 	}
 
-	// 3. Factor (only when the tangent changed: a new step of an aging kind, a break, a state change).
+	// 3. Factor (only when the tangent changed: a new step of an aging kind, a break, a state change,
+	//    the geometry). Keeping the factor while only the geometry moves was measured: 112 -> 4,227
+	//    iterations on a 40 mm run without damage, so the geometry's share of the tangent matters.
 	if (!S.haveFactor || S.factored.size() != size_t(S.K.nonZeros()) || !std::equal(v, v + S.K.nonZeros(), S.factored.begin())) {
 		S.chol.factorize(S.K);
 		++factorizations;
@@ -326,6 +330,23 @@ void ImplicitLogTimeSolver::newtonStep()
 	moveBodies(1.0);
 }
 
+Real ImplicitLogTimeSolver::residualMerit()
+{
+	if (!sys) return 0;
+	Real s = 0;
+	for (const auto& b : scene->bodies->body) {
+		if (!b || 3 * size_t(b->id) + 2 >= sys->dofOf.size()) continue;
+		const Vector3r& f = scene->forces.getForce(b->id);
+		const Vector3r& t = scene->forces.getTorque(b->id);
+		const int*      e = &sys->dofOf[3 * b->id];
+		const Real      r = b->id < long(sys->radius.size()) && sys->radius[b->id] > 0 ? sys->radius[b->id] : 1.0;
+		if (e[0] >= 0) s += f[0] * f[0];
+		if (e[1] >= 0) s += f[1] * f[1];
+		if (e[2] >= 0) s += (t[2] / r) * (t[2] / r);
+	}
+	return std::sqrt(s);
+}
+
 void ImplicitLogTimeSolver::moveBodies(Real fraction)
 {
 	// Through the velocities too: YADE's ScGeom takes the shear increment from them.
@@ -377,10 +398,13 @@ void ImplicitLogTimeSolver::action()
 		relaxing    = false;
 		newtonSince = iterInStep;
 	}
+	// Backtracking on the residual's 2-norm, for which a Newton move is a descent direction (the
+	// unbalanced ratio, a mean of per-body force norms, is not: measured, it stalls the search on
+	// 40 mm elastic runs that the 2-norm settles). A full move can jump across a broken contact's
+	// kink (open / closed) and back again; part of it lands on the side it stays on.
+	const Real merit = residualMerit();
 	if (lineAlpha > 0) {
-		// Backtracking on the unbalanced-force ratio: a full Newton move can jump across a broken
-		// contact's kink (open / closed) and back again; half of it lands on the side it stays on.
-		if (b.ratio > (1 - 1e-4 * lineAlpha) * lineRatio0 && lineAlpha > 1.0 / 64) {
+		if (merit > (1 - 1e-4 * lineAlpha) * lineRatio0 && lineAlpha > 1.0 / 64) {
 			moveBodies(-0.5 * lineAlpha);
 			lineAlpha *= 0.5;
 			++backtracks;
@@ -389,7 +413,7 @@ void ImplicitLogTimeSolver::action()
 	}
 	newtonStep();
 	lineAlpha  = 1;
-	lineRatio0 = b.ratio;
+	lineRatio0 = merit;
 }
 
 } // namespace yade

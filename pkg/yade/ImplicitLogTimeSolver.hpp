@@ -43,7 +43,7 @@ public:
 	X(std::vector<int>, pinnedDofs, std::vector<int>(), swelldem_attr::Internal,                                                                       \
 	  "Degrees of freedom held to remove a free specimen's rigid-body modes, as 3 x body id + axis (0 x, 1 y) [-]")                                  \
 	X(Real, lineAlpha, 0.0, swelldem_attr::Internal, "Fraction of the last Newton move being tried by the line search (0: none) [-]")               \
-	X(Real, lineRatio0, 0.0, swelldem_attr::Internal, "Unbalanced-force ratio before the last Newton move [-]")                                     \
+	X(Real, lineRatio0, 0.0, swelldem_attr::Internal, "Residual 2-norm over the free DOFs before the last Newton move (torques over the radius) [N]") \
 	X(std::vector<Real>, lineMove, std::vector<Real>(), swelldem_attr::Internal, "The last Newton move, 3 per body (x, y, rotation z) [m, rad]")  \
 	X(bool, relaxing, false, swelldem_attr::Internal, "The step is in a dynamic relaxation phase [-]")                                                  \
 	X(long, newtonSince, 0, swelldem_attr::Internal, "Iteration of the step at which Newton (re)started [-]")                                         \
@@ -66,6 +66,7 @@ private:
 	void                                  choosePins();
 	void                                  newtonStep();
 	void                                  moveBodies(Real fraction); // by fraction x lineMove, through the velocities
+	Real                                  residualMerit();           // |r| over the free DOFs, torques over the radius [N]
 	std::unique_ptr<ImplicitLinearSystem> sys; // not saved: rebuilt from the scene, it gives the same factor
 };
 
