@@ -278,10 +278,13 @@ def _catch_stop_signals():
         return {}
 
 
-def run(test):
+def run(test, extra_times=(), after_step=None):
     """Runs one swelling test inside YADE; writes results.json, tables, plots and VTK into test.out.
     Order: Python checks, the plugin objects (kinds, solver: their constructors validate), then the
-    mesostructure, the (macro) calibration, the scene and the run."""
+    mesostructure, the (macro) calibration, the scene and the run.
+    extra_times [day]: further physical times the solver stops at (its extraTimes), e.g. the ages of
+    virtual tests; after_step: a callable run without arguments after the recorder at every
+    converged step (e.g. saving the scene at a test age, swelldem.residual)."""
     test.validate()
     dem = _dem()
     from . import meso, report
@@ -290,6 +293,8 @@ def run(test):
     t0 = time.time()
     kinds = make_kinds(test)
     settings = dict(tStart=test.t_start_days, tEnd=test.t_end, stepsPerDecade=test.steps_per_decade, label="swelldemSolver")
+    if len(extra_times):
+        settings["extraTimes"] = sorted(float(t) for t in extra_times)
     if test.tolerance:  # 0 keeps the solver's own: the ADR's is an accuracy setting, the implicit solver's is round-off
         settings["tolerance"] = test.tolerance
     solver = dem.make_solver(test.solver, **settings)
@@ -320,7 +325,7 @@ def run(test):
            "per_kind": {n: {"fn_p05_kN": [], "fn_p95_kN": [], "broken": []} for n in paper.KIND_NAMES},
            "status": "running", "wall_s": 0.0}
     rec = recorder.StepRecorder(assembly, ys, solver, res, test.out, vtk_every=test.vtk_every)
-    solver.stepHook = rec
+    solver.stepHook = rec if after_step is None else (lambda: (rec(), after_step()))
     handlers = _catch_stop_signals()
     try:
         # short chunks: a stop signal is acted on between two of them
