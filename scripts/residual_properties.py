@@ -35,7 +35,9 @@ ap.add_argument("--sdt-steps", type=int, default=5,
                 help="SDT: ADR steps per branch on the undamaged specimen (the strain step is its target strain / this) [-]")
 ap.add_argument("--strain-step-tension", type=float, default=4e-6, help="strain increment per ADR step, tension test [-]")
 ap.add_argument("--strain-step-compression", type=float, default=25e-6, help="strain increment per ADR step, compression and SDT [-]")
-ap.add_argument("--test-tolerance", type=float, default=1e-4, help="ADR unbalanced-force tolerance of the tests' steps [-]")
+ap.add_argument("--test-tolerance", type=float, default=1e-4,
+                help="unbalanced-force tolerance of the tests' steps (0: the solver's own) [-]")
+ap.add_argument("--test-solver", default="adr", help="quasi-static solver of the tests: adr or implicit (see docs/residual-properties.md)")
 ap.add_argument("--reference-cache", default="",
                 help="folder where the undamaged specimen's tests are kept and reused (same seed, size, age, kinds and test "
                      "settings: they do not depend on the scenario or behaviour); empty: none")
@@ -59,8 +61,10 @@ try:
             residual._bad(name, f"{v:g}", "0 < step < 1e-3 [-]")
     if not args.sdt_steps >= 1:
         residual._bad("--sdt-steps", args.sdt_steps, "an integer >= 1")
-    if not (0 < args.test_tolerance < 1):
-        residual._bad("--test-tolerance", f"{args.test_tolerance:g}", "0 < tolerance < 1 [-]")
+    if not (0 <= args.test_tolerance < 1):
+        residual._bad("--test-tolerance", f"{args.test_tolerance:g}", "0 <= tolerance < 1 [-] (0: the solver's own)")
+    if args.test_solver not in ("adr", "implicit"):
+        residual._bad("--test-solver", args.test_solver, "adr, implicit")
 except ValueError as e:
     fail(str(e))
 
@@ -103,14 +107,14 @@ def run_tests(prepare, age, fc_ref=None, e_ref=None):
             deps = args.sdt_fraction * fc_ref / e_ref / args.sdt_steps
             legs = residual.sdt_legs(deps, args.sdt_fraction * fc_ref, args.sdt_cycles)
             r = residual.run_test(assembly, "compression", legs, age, n_idle=n_idle, tolerance=args.test_tolerance,
-                                  max_steps=8 * args.sdt_steps * args.sdt_cycles + 20)
+                                  max_steps=8 * args.sdt_steps * args.sdt_cycles + 20, solver_name=args.test_solver)
             r["strain_step"] = deps
             r.update(residual.sdt_indices(r["strain"], r["stress_Pa"], r["branch"]))
             r["target_Pa"] = args.sdt_fraction * fc_ref
         else:
             step = args.strain_step_tension if name == "tension" else args.strain_step_compression
             r = residual.run_test(assembly, name, residual.strength_legs(name, step, 200 * step), age, n_idle=n_idle,
-                                  tolerance=args.test_tolerance, max_steps=220)
+                                  tolerance=args.test_tolerance, max_steps=220, solver_name=args.test_solver)
             r.update(residual.strength_result(r))
             if name == "compression" and fc_ref is None:
                 fc_ref, e_ref = r["peak_Pa"], r["modulus_Pa"]
@@ -123,6 +127,8 @@ def run_tests(prepare, age, fc_ref=None, e_ref=None):
 kinds = scenario.make_kinds(test)
 settings = {k: getattr(args, k) for k in ("tests", "sdt_fraction", "sdt_cycles", "sdt_steps", "strain_step_tension",
                                           "strain_step_compression", "test_tolerance")}
+if args.test_solver != "adr":  # (caches made before the option existed stay valid for the ADR)
+    settings["test_solver"] = args.test_solver
 settings.update(seed=test.seed, size_mm=list(test.size_mm), aggregate_area_fraction=test.aggregate_area_fraction,
                 kinds={n: repr(sorted(residual.test_kinds({0: k})[0].dict().items())) for n, k in kinds.items()})
 
@@ -172,6 +178,7 @@ result = {"scenario": test.scenario, "behaviour": test.behaviour, "damage": test
           "size_mm": list(test.size_mm), "tests": args.tests, "sdt_fraction": args.sdt_fraction, "sdt_cycles": args.sdt_cycles,
           "modulus_window_of_peak": list(residual.MODULUS_WINDOW), "strain_step_tension": args.strain_step_tension,
           "strain_step_compression": args.strain_step_compression, "test_tolerance": args.test_tolerance,
+          "test_solver": args.test_solver,
           "swelling_status": swell.get("status"), "swelling_wall_s": t_swell, "wall_s": time.time() - t0,
           "ages": rows, "curves": per_age}
 os.makedirs(out, exist_ok=True)
