@@ -178,3 +178,27 @@ def test_saving_test_states_leaves_the_run_unchanged(yade_run):
     assert 100.0 in r["runs"]["plain"]["times_days"]
     assert r["digest_equal"]
     assert r["test_status"] == "done" and r["test_steps"] > 5
+
+
+NEWTON = r"""
+from swelldem import meso, dem, scenario
+from swelldem.dem import uniaxial
+import yade
+cal = scenario.calibrate_modulus_factor()
+a = meso.generate(seed=11, width_mm=15, height_mm=15, aggregate_area_fraction=0)
+k = dem.contact_kind("MORTAR", behaviour="elastic", young=1e9, damage=False)
+ys = dem.to_yade(a, {"MORTAR": k}, yade.NewtonIntegrator(damping=0.6))
+r = uniaxial.run_uniaxial(a, ys.contacts, "tension", deps_per_step=2e-8, max_strain=1e-4, chunk=200)
+dump({"beta": cal["beta"], "newton": r["modulus_Pa"] / 1e9})
+"""
+
+
+def test_calibration_against_newton_loading(yade_run):
+    """The calibration (one ADR equilibrium) against dynamic loading of the same specimen with
+    YADE's NewtonIntegrator (bands moved by velocities, local damping 0.6, strain 1e-4 in 5000
+    steps, modulus fitted over 30-90 % of half the final strain): measured 0.2 % apart; 2 %
+    allowed: the dynamic loading lags the quasi-static state (loaded to 4e-5 only, the same fit
+    gives 2.5 % less). With the band
+    moved before the ADR's set-up the calibration was 24 % below."""
+    r = yade_run(NEWTON, timeout=600)
+    assert r["beta"] == pytest.approx(r["newton"], rel=0.02), r
