@@ -130,7 +130,7 @@ settings = {k: getattr(args, k) for k in ("tests", "sdt_fraction", "sdt_cycles",
 if args.test_solver != "adr":  # (caches made before the option existed stay valid for the ADR)
     settings["test_solver"] = args.test_solver
 settings.update(seed=test.seed, size_mm=list(test.size_mm), aggregate_area_fraction=test.aggregate_area_fraction,
-                kinds={n: repr(sorted(residual.test_kinds({0: k})[0].dict().items())) for n, k in kinds.items()})
+                kinds={n: repr(sorted(residual.kinds_for_test({0: k})[0].dict().items())) for n, k in kinds.items()})
 
 
 def reference(age):

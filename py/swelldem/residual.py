@@ -11,7 +11,7 @@ What a virtual test is (docs/residual-properties.md gives the reasons):
   keeps its forces and broken state and is loaded further with the static modulus of its kind at
   the test age, E(t) = 1/J(t + 0.01 d, t) of its B3 q's (the 'aging-elastic' behaviour of the
   scenarios; aggregate contacts keep their constant modulus), its strength unchanged
-  (:func:`test_kinds`). Viscoelastic kinds become aging-elastic for the test: their creep history
+  (:func:`kinds_for_test`). Viscoelastic kinds become aging-elastic for the test: their creep history
   (the Kelvin-chain strains) stays stored and unused.
 * Loading: displacement control between two bands of discs (those whose edge lies within
   1.5 Rmax of the left or right side, :func:`swelldem.dem.uniaxial.bands`), both held in x, one
@@ -169,7 +169,7 @@ def scene_kinds():
     return out
 
 
-def test_kinds(kinds):
+def kinds_for_test(kinds):
     """Test kinds for {kindId: ContactKind}: the same parameters, swelling off, viscoelastic made
     aging-elastic (same B3 q's: its short-term response E(t) = 1/J(t + 0.01 d, t)); 'elastic' and
     'aging-elastic' stay as they are."""
@@ -372,6 +372,8 @@ def strength_legs(mode, deps, eps_max):
 
 
 def sdt_legs(deps, target_Pa, cycles=SDT_CYCLES):
+    """The SDT protocol: `cycles` times, load to target_Pa [Pa] and unload to zero stress, with
+    strain increments deps [-] (the last of each branch shortened to land on its target)."""
     legs = []
     for _ in range(cycles):
         legs += [("load", deps, target_Pa), ("unload", deps, target_Pa)]
@@ -385,7 +387,7 @@ def load_copy(path):
     yade.Omega().load(path)
     # A contact sets itself up for a step when its step serial differs from its kind's; the new
     # kinds count from 1, so steps run idle until they are past the serial the contacts carry.
-    serial = swap_kinds(test_kinds(scene_kinds()))
+    serial = swap_kinds(kinds_for_test(scene_kinds()))
     return int(serial) + 2
 
 
@@ -393,7 +395,7 @@ def fresh_specimen(assembly, kinds_by_name):
     """The undamaged specimen: the assembly as a new scene with test kinds made from kinds_by_name
     ({'MORTAR': ContactKind, ...}); returns 0 idle steps."""
     from . import dem, paper
-    tk = test_kinds({paper.KIND_IDS[n]: k for n, k in kinds_by_name.items()})
+    tk = kinds_for_test({paper.KIND_IDS[n]: k for n, k in kinds_by_name.items()})
     dummy = dem.make_solver("adr", verbose=False)
     dem.to_yade(assembly, {n: tk[paper.KIND_IDS[n]] for n in kinds_by_name}, dummy)
     return 0
