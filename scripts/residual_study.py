@@ -111,9 +111,15 @@ for q, label in QUANTITIES.items():
             ax.errorbar(mx, my, yerr=[lo, hi], color=COLORS[sc], marker=MARKERS[beh], mfc="white" if beh == "viscoelastic" else COLORS[sc],
                         lw=1, capsize=3, label=f"{sc}, {beh}")
     ax.set_xlabel("expansion of the swelling run at the test age, area strain (%)")
+    # laboratories report length change: the linear strain of an isotropic expansion is half the area strain
+    top = ax.secondary_xaxis("top", functions=(lambda x: x / 2, lambda x: 2 * x))
+    top.set_xlabel("linear expansion, area strain / 2 (%)", fontsize=8)
     ax.set_ylabel(label)
     if q.endswith("_rel"):
         ax.axhline(1.0, color="0.6", lw=0.8)
+        ax.set_ylim(0, 1.1)
+    else:
+        ax.set_ylim(bottom=min(0.0, ax.get_ylim()[0]))
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
     ax.set_title(f"{label}: {args.size_mm[0]:g} x {args.size_mm[1]:g} mm, seeds {' '.join(map(str, args.seeds))} (dots), mean and range",
