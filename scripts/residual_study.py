@@ -70,6 +70,8 @@ for sc, beh, seed in runs:
     with open(path) as f:
         r = json.load(f)
     for a in r["ages"]:
+        if a.get("sdt_status") != "done":  # an SDT that failed before its last cycle has no indices to compare
+            a = dict(a, SDI=float("nan"), PDI=float("nan"))
         rows.append({"scenario": sc, "behaviour": beh, "seed": seed, "age_days": a["age_days"], "expansion_pct": 100 * a["expansion"],
                      **{q: a.get(q, float("nan")) for q in QUANTITIES}, "SDI0": a.get("SDI0"), "PDI0": a.get("PDI0"),
                      "sdt_status": a.get("sdt_status"), "broken_before_test": a.get("broken_before_compression"),
@@ -134,7 +136,7 @@ with open(os.path.join(args.out, "study.csv"), "w", newline="") as f:
     w.writerows(rows)
 # Means per scenario, behaviour and age (the docs' table)
 with open(os.path.join(args.out, "summary.md"), "w") as f:
-    f.write("| scenario | behaviour | age (d) | expansion (%) | E/E0 | f_c/f_c0 | f_t/f_t0 | SDI | PDI |\n|---|---|---|---|---|---|---|---|---|\n")
+    f.write("| scenario | behaviour | age (d) | expansion (%) | E/E0 | f_c/f_c0 | f_t/f_t0 | SDI | PDI | SDT done |\n|---|---|---|---|---|---|---|---|---|---|\n")
     for sc in args.scenarios:
         for beh in args.behaviours:
             for a in sorted({r["age_days"] for r in rows if r["scenario"] == sc}):
@@ -146,6 +148,7 @@ with open(os.path.join(args.out, "summary.md"), "w") as f:
                     v = np.array([r[k] for r in sel], float)
                     v = v[np.isfinite(v)]
                     return (fmt.format(v.mean()) + " (" + fmt.format(v.min()) + "-" + fmt.format(v.max()) + ")") if len(v) else "-"
+                done = sum(1 for r in sel if r["sdt_status"] == "done")
                 f.write(f"| {sc} | {beh} | {a:g} | {ms('expansion_pct', '{:.3f}')} | {ms('E_rel')} | {ms('fc_rel')} | {ms('ft_rel')} | "
-                        f"{ms('SDI', '{:.3f}')} | {ms('PDI', '{:.3f}')} |\n")
+                        f"{ms('SDI', '{:.3f}')} | {ms('PDI', '{:.3f}')} | {done}/{len(sel)} |\n")
 print(f"wrote {len(rows)} rows, {len(QUANTITIES)} PNG and CSV into {args.out}")
