@@ -119,8 +119,12 @@ for q, label in QUANTITIES.items():
     ax.set_ylabel(label)
     if q.endswith("_rel"):
         ax.axhline(1.0, color="0.6", lw=0.8)
-        ax.set_ylim(0, 1.1)
+        ax.set_ylim(0, max(1.1, np.nanmax([r[q] for r in rows]) + 0.05))
     else:
+        # the same test on the undamaged specimen: what the method gives without any swelling damage
+        floor = np.nanmean([r[q + "0"] for r in rows if r[q + "0"] is not None])
+        ax.axhline(floor, color="0.4", ls="--", lw=0.8, label=f"undamaged specimens, mean {floor:.4f}")
+        ax.legend(fontsize=7)
         ax.set_ylim(bottom=min(0.0, ax.get_ylim()[0]))
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
