@@ -90,6 +90,7 @@ void ImplicitLogTimeSolver::postLoad()
 	core::require(newtonLimit >= 1, "ImplicitLogTimeSolver.newtonLimit", newtonLimit, ">= 1");
 	core::require(maxSlidingExact >= 0, "ImplicitLogTimeSolver.maxSlidingExact", maxSlidingExact, ">= 0");
 	core::requireOpenInterval("ImplicitLogTimeSolver.relaxTolerance", relaxTolerance, 0, 1);
+	core::require(stallTolerance >= 0 && stallTolerance < 1, "ImplicitLogTimeSolver.stallTolerance", stallTolerance, "0 <= stallTolerance < 1");
 }
 
 void ImplicitLogTimeSolver::choosePins()
@@ -374,7 +375,13 @@ void ImplicitLogTimeSolver::action()
 	if (iterInStep == 1) relaxationAtStepStart = relaxationIterations, factorizationsAtStepStart = factorizations;
 	const Balance b = measureBalance();
 	const TrackHeldBodiesAtExit track { this };
-	const StepOutcome out = settleStep(b, b.ratio <= tolerance || b.atRoundOff);
+	// A round whose Newton iterations have not reached `tolerance` after newtonLimit (a broken contact
+	// sitting on its open / closed kink keeps the residual from falling further) is settled once it
+	// is within stallTolerance, and counted.
+	const bool        exact   = b.ratio <= tolerance || b.atRoundOff;
+	const bool        stalled = !exact && !relaxing && iterInStep - newtonSince > newtonLimit && b.ratio <= stallTolerance;
+	const StepOutcome out     = settleStep(b, exact || stalled);
+	if (stalled && out != StepOutcome::Continue) ++stalledRounds;
 	if (out != StepOutcome::Continue || iterInStep == 1) relaxing = false, newtonSince = iterInStep, relaxPhase = 0, lineAlpha = 0;
 	if (out == StepOutcome::Committed) return;
 	if (out == StepOutcome::Broke) { // the next pass computes the forces without the broken contacts
