@@ -4,6 +4,9 @@
 // and boost::serialization, the way YADE's own class macros do for in-tree classes.
 #pragma once
 #include "Engines.hpp"
+#include <sstream>
+#include <stdexcept>
+#include <type_traits>
 #include <boost/archive/binary_iarchive.hpp>
 #include <boost/archive/binary_oarchive.hpp>
 #include <boost/archive/xml_iarchive.hpp>
@@ -81,13 +84,27 @@ namespace swelldem_py {
 	template <class T> auto afterLoadImpl(T& t, int) -> decltype(t.afterLoad(), void()) { t.afterLoad(); }
 	template <class T> void afterLoadImpl(T&, long) { }
 	template <class T> void afterLoad(T& t) { afterLoadImpl(t, 0); }
-	// Assignment from Python: validate through postLoad; a refused value leaves the object as it was.
-	template <class C, class T> void setChecked(C& self, T& member, const T& value)
+	template <class T> std::string shown(const T& v)
+	{
+		if constexpr (std::is_arithmetic_v<T> || std::is_same_v<T, std::string>) {
+			std::ostringstream s;
+			s << v;
+			return s.str();
+		} else
+			return "(the value given)";
+	}
+	// Assignment from Python: validate through postLoad; a refused value leaves the object as it was
+	// and the error names the attribute as the user wrote it (the core names its own parameter).
+	template <class C, class T> void setChecked(C& self, const char* name, T& member, const T& value)
 	{
 		T old  = member;
 		member = value;
 		try {
 			self.postLoad();
+		} catch (const std::exception& e) {
+			member = old;
+			throw std::invalid_argument(self.getClassName() + "." + name + " = " + shown(value) + " refused, the old value "
+			                            + shown(old) + " kept: " + e.what());
 		} catch (...) {
 			member = old;
 			throw;
@@ -112,7 +129,7 @@ namespace swelldem_py {
 		auto getter = boost::python::make_getter(&ThisClass::name, boost::python::return_value_policy<boost::python::return_by_value>());             \
 		if ((flags)&swelldem_attr::Result) cls.add_property(#name, getter, "(result, read-only) " doc);                                                \
 		else                                                                                                                                           \
-			cls.add_property(#name, getter, +[](ThisClass& self, const type& v) { swelldem_py::setChecked(self, self.name, v); }, doc);          \
+			cls.add_property(#name, getter, +[](ThisClass& self, const type& v) { swelldem_py::setChecked(self, #name, self.name, v); }, doc);          \
 	}
 // A table of parameters stored in a plain struct member `table` (the physics core's own struct):
 // #define TABLE(X) X(type, name, member path in the struct, default, "doc [unit]"); all are settings.
@@ -127,7 +144,7 @@ namespace swelldem_py {
 #define SWELLDEM_TABLE_PROPERTY(type, name, member, def, doc)                                                                                                  \
 	cls.add_property(                                                                                                                                      \
 	        #name, +[](const ThisClass& self) -> type { return self.table.member; },                                                                      \
-	        +[](ThisClass& self, const type& v) { swelldem_py::setChecked(self, self.table.member, v); }, doc);
+	        +[](ThisClass& self, const type& v) { swelldem_py::setChecked(self, #name, self.table.member, v); }, doc);
 
 // Everything a swelldem class needs to be a YADE Serializable. The class must also define
 // `void postLoad()` (called after attributes are set from Python or loaded from a file; the
