@@ -18,7 +18,6 @@ struct ImplicitLinearSystem {
 	std::vector<int>                                   slots;      // per contact, the 21 entries of its 6 x 6 lower triangle (-1: held)
 	std::vector<int>                                   diagSlot;   // per equation
 	std::vector<char>                                  active;     // per contact: its core::ContactLaw::Mode
-	std::vector<Real>                                  radius;     // per body, from its contacts' geometry
 	std::vector<double>                                factored;   // values of the current factor
 	SpMat                                              K;
 	Eigen::CholmodDecomposition<SpMat, Eigen::Lower>   chol;
@@ -229,8 +228,7 @@ void ImplicitLogTimeSolver::newtonStep()
 	};
 	std::vector<SlidingCoupling> sliding;
 	double            kScale  = 0;                      // mean step stiffness kn'' of the contacts
-	std::vector<Real>& radius = S.radius;               // from the contacts' geometry (the shape is not declared here)
-	radius.assign(bodies.size(), 0.0);
+	std::vector<Real> radius(bodies.size(), 0.0);      // from the contacts' geometry (the shape is not declared here)
 	for (size_t c = 0; c < contacts.size(); ++c) {
 		const Interaction* I = contacts[c];
 		const auto*        g = static_cast<const ScGeom*>(I->geom.get());
@@ -331,19 +329,31 @@ void ImplicitLogTimeSolver::newtonStep()
 	moveBodies(1.0);
 }
 
-Real ImplicitLogTimeSolver::residualMerit()
+Real ImplicitLogTimeSolver::residualMerit() const
 {
-	if (!sys) return 0;
-	Real s = 0;
-	for (const auto& b : scene->bodies->body) {
-		if (!b || 3 * size_t(b->id) + 2 >= sys->dofOf.size()) continue;
+	// From the scene and saved attributes alone (not from the linear system, which a loaded scene
+	// rebuilds later), so that a reload continues exactly.
+	const auto& bodies = scene->bodies->body;
+	std::vector<Real> radius(bodies.size(), 0.0);
+	const auto&       L = scene->interactions->linIntrs;
+	for (size_t i = 0; i < scene->interactions->currSize; ++i) {
+		const Interaction* I = L[i].get();
+		if (!I->isReal()) continue;
+		const auto* g  = static_cast<const ScGeom*>(I->geom.get());
+		radius[I->id1] = std::max(radius[I->id1], g->radius1);
+		radius[I->id2] = std::max(radius[I->id2], g->radius2);
+	}
+	const unsigned axisBit[3] = { State::DOF_X, State::DOF_Y, State::DOF_RZ };
+	Real           s          = 0;
+	for (const auto& b : bodies) {
+		if (!b || b->isClump()) continue;
 		const Vector3r& f = scene->forces.getForce(b->id);
 		const Vector3r& t = scene->forces.getTorque(b->id);
-		const int*      e = &sys->dofOf[3 * b->id];
-		const Real      r = b->id < long(sys->radius.size()) && sys->radius[b->id] > 0 ? sys->radius[b->id] : 1.0;
-		if (e[0] >= 0) s += f[0] * f[0];
-		if (e[1] >= 0) s += f[1] * f[1];
-		if (e[2] >= 0) s += (t[2] / r) * (t[2] / r);
+		const Real      r = radius[b->id] > 0 ? radius[b->id] : 1.0;
+		const Real      val[3] = { f[0], f[1], t[2] / r };
+		for (int d = 0; d < 3; ++d)
+			if (!(b->state->blockedDOFs & axisBit[d]) && std::find(pinnedDofs.begin(), pinnedDofs.end(), 3 * b->id + d) == pinnedDofs.end())
+				s += val[d] * val[d];
 	}
 	return std::sqrt(s);
 }
@@ -379,7 +389,7 @@ void ImplicitLogTimeSolver::action()
 	// sitting on its open / closed kink keeps the residual from falling further) is settled once it
 	// is within stallTolerance, and counted.
 	const bool        exact   = b.ratio <= tolerance || b.atRoundOff;
-	const bool        stalled = !exact && !relaxing && iterInStep - newtonSince > newtonLimit && b.ratio <= stallTolerance;
+	const bool        stalled = !exact && iterInStep - newtonSince > newtonLimit && b.ratio <= stallTolerance;
 	const StepOutcome out     = settleStep(b, exact || stalled);
 	if (stalled && out != StepOutcome::Continue) ++stalledRounds;
 	if (out != StepOutcome::Continue || iterInStep == 1) relaxing = false, newtonSince = iterInStep, relaxPhase = 0, lineAlpha = 0;

@@ -33,9 +33,9 @@ public:
 	  "open / closed / sliding state that does not settle under Newton) [-]")                                                                       \
 	X(Real, relaxTolerance, 1e-4, swelldem_attr::Setting,                                                                                                \
 	  "Unbalanced-force ratio at which dynamic relaxation hands back to Newton; each further relaxation of the same round goes 100x lower [-]")  \
-	X(Real, stallTolerance, 1e-6, swelldem_attr::Setting,                                                                                                \
+	X(Real, stallTolerance, 1e-5, swelldem_attr::Setting,                                                                                                \
 	  "Unbalanced-force ratio at which a round that Newton has not brought to `tolerance` within newtonLimit iterations is settled "            \
-	  "(a broken contact on its open / closed kink; 100x below the ADR's default tolerance; 0: never) [-]")                                         \
+	  "(a broken contact on its open / closed kink; 10x below the ADR's default tolerance; 0: never) [-]")                                         \
 	X(long, maxSlidingExact, 1000, swelldem_attr::Setting,                                                                                              \
 	  "Sliding contacts up to which their shear-normal coupling enters the Newton solve exactly (one extra solve each); above, it is left out [-]") \
 	X(long, stalledRounds, 0, swelldem_attr::Result, "Rounds (a step, or its part between breaks) settled at stallTolerance, not at tolerance [-]") \
@@ -70,7 +70,7 @@ private:
 	void                                  choosePins();
 	void                                  newtonStep();
 	void                                  moveBodies(Real fraction); // by fraction x lineMove, through the velocities
-	Real                                  residualMerit();           // |r| over the free DOFs, torques over the radius [N]
+	Real                                  residualMerit() const;     // |r| over the free DOFs, torques over the radius [N]
 	std::unique_ptr<ImplicitLinearSystem> sys; // not saved: rebuilt from the scene, it gives the same factor
 };
 
