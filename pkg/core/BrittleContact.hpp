@@ -38,6 +38,18 @@ public:
     {
         return std::tan(s.residualFrictionAngle) * std::max(-Fn, 0.0);
     }
+    /// How far an intact contact carrying (Fn, |Fs|) is beyond its strength: the larger of
+    /// Fn / (f_t A) and, with shear failure on, |Fs| / (c A + tan(phi) max(-Fn, 0)); > 1 breaks it.
+    static double overload(const BrittleStrength& s, double area, double Fn, double shearMagnitude)
+    {
+        if (!s.damage) return 0.0;
+        double r = Fn / maxTension(s, area);
+        if (s.shearFailure) {
+            const double cap = shearCapacityIntact(s, area, Fn);
+            r = std::max(r, cap > 0 ? std::fabs(shearMagnitude) / cap : (shearMagnitude != 0 ? HUGE_VAL : 0.0));
+        }
+        return r;
+    }
     /// Whether an intact contact carrying (Fn, |Fs|) breaks, and how (tension checked first).
     static FailureMode check(const BrittleStrength& s, double area, double Fn, double shearMagnitude)
     {

@@ -79,6 +79,11 @@ public:
     /// At equilibrium: breaks an intact contact of a damaging kind whose trial forces exceed its
     /// strength; returns whether it broke. Its forces follow at the next update.
     bool breakIfOverloaded(const ContactGeometry& g, ContactState& s) const;
+    /// BrittleContact::overload of the trial forces of an intact contact (0 once broken) [-].
+    double overload(const ContactGeometry& g, const ContactState& s) const
+    {
+        return s.trial.broken ? 0.0 : BrittleContact::overload(p_.strength, g.area, s.trial.FnHat, s.trial.Fs);
+    }
     /// The state that decides a contact's tangent stiffness in an implicit solver: kn'', ks'' while
     /// intact or sticking, kn'' alone while sliding (its shear force stays on the Coulomb cone),
     /// none while open (FnHat >= 0).

@@ -118,6 +118,18 @@ long LogTimeSolver::breakOverloaded()
 	// iterates again; what remains of the step size's effect is the load increment.
 	long        n = 0;
 	const auto& L = scene->interactions->linIntrs;
+	if (breakOneAtATime) {
+		SwellPhys* worst = nullptr;
+		Real       most  = 1;
+		for (size_t i = 0; i < scene->interactions->currSize; ++i) {
+			if (!L[i]->isReal()) continue;
+			if (auto* p = dynamic_cast<SwellPhys*>(L[i]->phys.get())) {
+				const Real r = p->kind->law().overload(p->geometry(), p->state);
+				if (r > most) most = r, worst = p;
+			}
+		}
+		return worst && Law2_ScGeom_SwellPhys_AgingSwelling::breakIfOverloaded(*worst) ? 1 : 0;
+	}
 	for (size_t i = 0; i < scene->interactions->currSize; ++i) {
 		if (!L[i]->isReal()) continue;
 		if (auto* p = dynamic_cast<SwellPhys*>(L[i]->phys.get()))

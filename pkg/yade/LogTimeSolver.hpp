@@ -35,6 +35,9 @@ public:
 	X(long, colliderPeriod, 20, swelldem_attr::Setting,                                                                                                  \
 	  "Run the engine labelled colliderLabel only every this many iterations and at each step's start (1: always) [-]")                              \
 	X(string, colliderLabel, "collider", swelldem_attr::Setting, "Label of the collider engine that colliderPeriod controls [-]")                      \
+	X(bool, breakOneAtATime, false, swelldem_attr::Setting,                                                                                              \
+	  "At each equilibrium break only the most overloaded contact, then iterate again (sequentially linear analysis), instead of every "       \
+	  "overloaded contact at once; for measuring what the break rule changes (docs/performance.md) [-]")                                           \
 	X(bool, verbose, true, swelldem_attr::Setting, "Print a progress line per physical step [-]")                                                      \
 	X(std::vector<Real>, times, std::vector<Real>(), swelldem_attr::Result, "Physical times of the run, tStart first (set at the first iteration) [day]") \
 	X(int, step, 0, swelldem_attr::Result, "Current physical step (1..nSteps; step i goes from times[i-1] to times[i]) [-]")                           \

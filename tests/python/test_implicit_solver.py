@@ -269,3 +269,57 @@ def test_cracking_specimen_settles_by_newton_and_breaks_as_the_adr(yade_run):
     for kind, pct in imp["broken_pct"].items():
         assert abs(pct - adr["broken_pct"][kind]) < 3.0, kind
     assert imp["broken_pct"]["ITZ"] > 50, "the specimen must crack for this test to test anything"
+
+
+# Three discs in a row, a (held) - b (free in x) - c (held): contact a-b MORTAR (f_t A = 4000 N),
+# b-c ITZ (2000 N), both kn = E A / L = E. After the first step c is pulled by delta: in series both
+# carry F = kn delta / 2 = 5000 N, both beyond their strength. Breaking every overloaded contact
+# at once breaks both; breaking the most overloaded first (ITZ: 2.5 against MORTAR's 1.25) opens
+# b-c, which unloads a-b: it stays intact.
+SERIES = r"""
+from yade import utils
+W = yade.wrapper
+R, E = 0.5e-3, 30e9
+O.reset()
+mortar = W.ConcreteMat(young=E, poisson=0.2, density=2400, aggregateId=-1)
+aggregate = W.ConcreteMat(young=E, poisson=0.2, density=2400, aggregateId=0)
+O.materials.append([mortar, aggregate])
+kinds = {{n: W.ContactKind(name=n, behaviour="elastic", young=E, shearRatio=0.3, damage=True, tensileStrength=s)
+          for n, s in (("MORTAR", 4e6), ("ITZ", 2e6), ("AGG", 8e6))}}
+a = O.bodies.append(utils.sphere((0, 0, 0), R, material=mortar))
+b = O.bodies.append(utils.sphere((2 * R, 0, 0), R, material=mortar))
+c = O.bodies.append(utils.sphere((4 * R, 0, 0), R, material=aggregate))
+O.bodies[a].state.blockedDOFs = O.bodies[c].state.blockedDOFs = "xyzXYZ"
+O.bodies[b].state.blockedDOFs = "yzXYZ"
+solver = W.{solver}(tStart=1.0, tEnd=100.0, stepsPerDecade=1, verbose=False, breakOneAtATime={one}{extra})
+ip2 = W.Ip2_ConcreteMat_ConcreteMat_SwellPhys(mortar=kinds["MORTAR"], itz=kinds["ITZ"], agg=kinds["AGG"])
+O.engines = [W.ForceResetter(), W.InsertionSortCollider([W.Bo1_Sphere_Aabb(aabbEnlargeFactor=1.05)], verletDist=0),
+             W.InteractionLoop([W.Ig2_Sphere_Sphere_ScGeom(interactionDetectionFactor=1.05)], [ip2],
+                               [W.Law2_ScGeom_SwellPhys_AgingSwelling()]), solver]
+utils.createInteraction(a, b)
+utils.createInteraction(b, c)
+ip2.cohesive = False
+def hook():
+    if solver.step == 2:
+        O.bodies[c].state.pos = O.bodies[c].state.pos + Vector3(2 * 5000.0 / E, 0, 0)
+solver.stepHook = hook
+err = None
+try:
+    while not solver.finished:
+        O.run(1000, True)
+except Exception as e:
+    err = str(e)
+dump({{"err": err, "ab": O.interactions[a, b].phys.broken, "bc": O.interactions[b, c].phys.broken,
+       "kinds": [O.interactions[a, b].phys.kindName, O.interactions[b, c].phys.kindName]}})
+"""
+
+
+@pytest.mark.parametrize("solver", SOLVERS)
+@pytest.mark.parametrize("one", [False, True])
+def test_break_rule_all_overloaded_at_once_or_the_most_overloaded_first(yade_run, solver, one):
+    extra = "" if solver.startswith("Impl") else ", tolerance=1e-7"
+    res = yade_run(SERIES.format(solver=solver, one=one, extra=extra), threads=1)
+    assert res["err"] is None, res["err"]
+    assert res["kinds"] == ["MORTAR", "ITZ"]
+    assert res["bc"], "the weaker, more overloaded contact breaks under either rule"
+    assert res["ab"] == (not one)
