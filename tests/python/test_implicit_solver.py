@@ -220,7 +220,8 @@ W = yade.wrapper
 O.bodies.append([utils.sphere((0, 0, 0), 1e-3), utils.sphere((2e-3, 0, 0), 1e-3)])
 O.engines = [W.ForceResetter(), W.ImplicitLogTimeSolver()]
 try:
-    O.run(3, True)
+    for _ in range(3):   # O.step: in this thread, so the engine's exception reaches the script directly
+        O.step()
     dump({"err": None})
 except Exception as e:
     dump({"err": str(e)})
