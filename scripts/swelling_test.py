@@ -6,7 +6,8 @@
       [--steps-per-decade N] [--tolerance TOL] [--kind-param MORTAR.tensileStrength=5e6 ...] --out DIR
 
 writes DIR/results.json, DIR/table.md, DIR/table.csv, DIR/*.png (swelling strain, unbalanced force,
-force quantiles, crack map) and DIR/vtk/ (particles and contacts, through YADE's VTKExporter).
+force quantiles, crack map) and DIR/vtk/ (ParaView: particles and contacts .vtp files of the last step,
+or of every k-th with --vtk-every k, and particles.pvd / contacts.pvd with the times in days).
 The options are the fields of swelldem.scenario.SwellingTest; --kind-param sets any ContactKind
 attribute of one kind (see `--help`)."""
 import argparse

@@ -80,7 +80,7 @@ class SwellingTest:
                                      "MORTAR.tensileStrength=5e6 [Pa]; contact values, applied last (after eps_inf, "
                                      "strength_scale and, in macro, the beta scaling of q's and young)",
                                flag="--kind-param", sets="ContactKind.<attribute>", factory=dict)
-    vtk_every: int = _field(0, "VTK every k physical steps (0: only the last)")
+    vtk_every: int = _field(0, "ParaView files (DIR/vtk/) every k physical steps, and always of the last (0: only the last)")
     out: str = _field("out/swelling", "output folder")
 
     def validate(self):
@@ -328,6 +328,21 @@ def prepare(test, extra_times=()):
     return kinds, dem.make_solver(test.solver, **settings)
 
 
+#: O.tags a yade-batch job carries (yade.utils.readParamsFromTable sets them), kept in results.json.
+BATCH_TAGS = ("id", "line", "description", "params", "defaultParams", "d.id")
+
+
+def batch_tags():
+    """The BATCH_TAGS present in O.tags, as a dict (empty outside YADE)."""
+    try:
+        from .plugin import require
+        yade, _ = require("swelldem.scenario.batch_tags")
+    except Exception:  # noqa: BLE001 - plain Python has no O.tags
+        return {}
+    tags = yade.Omega().tags
+    return {k: tags[k] for k in BATCH_TAGS if k in tags.keys()}
+
+
 def run(test, prepared=None, extra_times=(), after_step=None):
     """Runs one swelling test inside YADE; writes results.json, tables, plots and VTK into test.out.
     Order: prepare() (Python checks, then the plugin objects, whose constructors validate; pass
@@ -366,7 +381,7 @@ def run(test, prepared=None, extra_times=(), after_step=None):
            "n_contacts_by_kind": counts, "n_gel_pockets": int(len(gel)), "times_days": [], "swelling_strain_x": [],
            "swelling_strain_y": [], "unbalanced_ratio": [], "adr_iterations_per_step": [], "step_at_round_off": [], "adr_iterations": 0,
            "per_kind": {n: {"fn_p05_kN": [], "fn_p95_kN": [], "broken": [], "born_broken": []} for n in paper.KIND_NAMES},
-           "status": "running", "wall_s": 0.0}
+           "status": "running", "wall_s": 0.0, "yade_tags": batch_tags()}
     rec = recorder.StepRecorder(assembly, ys, solver, res, test.out, vtk_every=test.vtk_every)
     solver.stepHook = rec if after_step is None else (lambda: (rec(), after_step()))
     handlers = _catch_stop_signals()
@@ -387,7 +402,7 @@ def run(test, prepared=None, extra_times=(), after_step=None):
         res["wall_s"] = time.time() - t0
         for sig, handler in handlers.items():
             signal.signal(sig, handler)
-    recorder.export_vtk(test.out)
+    rec.export_vtk()
     report.write_results(test.out, res)
     report.write_all(test.out, res, assembly, recorder.broken_contacts(rec.bonded))
     return res
