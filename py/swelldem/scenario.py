@@ -30,6 +30,7 @@ mesostructure is generated.
 import ast
 import math
 import os
+import re
 import signal
 import time
 from dataclasses import MISSING, asdict, dataclass, field, fields
@@ -196,6 +197,58 @@ def from_arguments(ns):
         kind, attr, value = parse_kind_param(text)
         params.setdefault(kind, {})[attr] = value
     kw["kind_params"] = params
+    return SwellingTest(**kw)
+
+
+def _job_folder_name(description, line):
+    # a description synthesized by YADE (e.g. "scenario='isr',seed=3") holds quotes and commas
+    name = re.sub(r"[^A-Za-z0-9._=+-]+", "_", str(description)).strip("_")
+    return name or f"line{line}"
+
+
+def from_batch_table(test, table_line=None):
+    """The SwellingTest of one line of a yade-batch table: the fields of `test` (the command line's)
+    are the defaults, each table column sets the SwellingTest field of its name (swelling_test.py
+    --help lists them; a 'description' column names the job). Values are Python literals without
+    spaces, as yade.utils.readParamsFromTable reads them: 'isr' (quoted), True, (12,12),
+    {'MORTAR':{'tensileStrength':5e6}}.
+
+    table_line: 'file.table:N' (N the line number as seen in an editor); default the YADE_BATCH
+    environment variable that yade-batch sets for each job. Without either, returns `test`
+    unchanged. The job writes into <out>/<description>, out being the table's 'out' column or else
+    out/<table file name without extension>, so that every line has its own folder.
+    readParamsFromTable also sets O.tags 'description', 'params', 'line' and 'd.id' (kept by
+    to_yade's reset, written to results.json's yade_tags). ValueError for a column that is not a
+    SwellingTest field or a value that is not a literal, before any work."""
+    table_line = table_line if table_line is not None else os.environ.get("YADE_BATCH", "")
+    if not table_line:
+        return test
+    from .plugin import require
+    yade, _ = require("swelldem.scenario.from_batch_table")
+    from yade import utils
+    table, _, line = table_line.rpartition(":")
+    names = [f.name for f in fields(SwellingTest)]
+    try:
+        rows = utils.TableParamReader(table).paramDict()
+    except (OSError, IndexError) as e:
+        _bad("batch table", table_line, f"a readable yade-batch table file:line ({e})")
+    row = rows.get(int(line)) if line.isdigit() else None
+    if row is None:
+        _bad("batch table line", table_line, f"one of the table's lines {', '.join(map(str, sorted(rows)))}")
+    for col in row:
+        if col != "description" and not col.startswith("!") and col not in names:
+            _bad("batch table column", col, ", ".join(["description"] + names))
+    defaults = {name: getattr(test, name) for name in names}
+    try:
+        utils.readParamsFromTable(tableFileLine=table_line, noTableOk=False, **defaults)
+    except (NameError, SyntaxError) as e:  # eval of a value: an unquoted word, a space inside a value
+        _bad("batch table value", f"{table_line} ({e})", "Python literals without spaces, strings quoted: 'isr'")
+    from yade.params import table as values
+    kw = {name: getattr(values, name) for name in names}
+    if isinstance(kw["size_mm"], list):
+        kw["size_mm"] = tuple(kw["size_mm"])
+    base = kw["out"] if "out" in row else os.path.join("out", os.path.splitext(os.path.basename(table))[0])
+    kw["out"] = os.path.join(base, _job_folder_name(yade.Omega().tags["description"], line))
     return SwellingTest(**kw)
 
 
