@@ -6,9 +6,16 @@
       [--steps-per-decade N] [--tolerance TOL] [--kind-param MORTAR.tensileStrength=5e6 ...] --out DIR
 
 writes DIR/results.json, DIR/table.md, DIR/table.csv, DIR/*.png (swelling strain, unbalanced force,
-force quantiles, crack map) and DIR/vtk/ (particles and contacts, through YADE's VTKExporter).
+force quantiles, crack map) and DIR/vtk/ (ParaView: particles and contacts .vtp files of the last step,
+or of every k-th with --vtk-every k, and particles.pvd / contacts.pvd with the times in days).
 The options are the fields of swelldem.scenario.SwellingTest; --kind-param sets any ContactKind
-attribute of one kind (see `--help`)."""
+attribute of one kind (see `--help`).
+
+As a yade-batch job, each table column sets the field of its name and each line writes into
+out/<table name>/<description> (docs/scenarios.md, "Parameter sweeps with yade-batch"):
+
+  mkdir -p out/swelling_sweep && yade-batch -j 2 --job-threads 1 --log 'out/swelling_sweep/@.log' \
+      --executable "$PWD/scripts/yade-swelldem" scripts/swelling_sweep.table scripts/swelling_test.py"""
 import argparse
 import os
 import sys
@@ -19,7 +26,8 @@ from swelldem import options, scenario  # noqa: E402
 ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
 scenario.add_arguments(ap)
 with options.refuse_bad("swelling_test.py"):  # exit status 2, as argparse's, before any work
-    test = scenario.from_arguments(ap.parse_args(sys.argv[1:]))
+    # under yade-batch (YADE_BATCH set) the job's table line overrides the command line's values
+    test = scenario.from_batch_table(scenario.from_arguments(ap.parse_args(sys.argv[1:])))
     prepared = scenario.prepare(test)
 try:
     res = scenario.run(test, prepared)

@@ -30,6 +30,7 @@ mesostructure is generated.
 import ast
 import math
 import os
+import re
 import signal
 import time
 from dataclasses import MISSING, asdict, dataclass, field, fields
@@ -80,7 +81,7 @@ class SwellingTest:
                                      "MORTAR.tensileStrength=5e6 [Pa]; contact values, applied last (after eps_inf, "
                                      "strength_scale and, in macro, the beta scaling of q's and young)",
                                flag="--kind-param", sets="ContactKind.<attribute>", factory=dict)
-    vtk_every: int = _field(0, "VTK every k physical steps (0: only the last)")
+    vtk_every: int = _field(0, "ParaView files (DIR/vtk/) every k physical steps, and always of the last (0: only the last)")
     out: str = _field("out/swelling", "output folder")
 
     def validate(self):
@@ -196,6 +197,58 @@ def from_arguments(ns):
         kind, attr, value = parse_kind_param(text)
         params.setdefault(kind, {})[attr] = value
     kw["kind_params"] = params
+    return SwellingTest(**kw)
+
+
+def _job_folder_name(description, line):
+    # a description synthesized by YADE (e.g. "scenario='isr',seed=3") holds quotes and commas
+    name = re.sub(r"[^A-Za-z0-9._=+-]+", "_", str(description)).strip("_")
+    return name or f"line{line}"
+
+
+def from_batch_table(test, table_line=None):
+    """The SwellingTest of one line of a yade-batch table: the fields of `test` (the command line's)
+    are the defaults, each table column sets the SwellingTest field of its name (swelling_test.py
+    --help lists them; a 'description' column names the job). Values are Python literals without
+    spaces, as yade.utils.readParamsFromTable reads them: 'isr' (quoted), True, (12,12),
+    {'MORTAR':{'tensileStrength':5e6}}.
+
+    table_line: 'file.table:N' (N the line number as seen in an editor); default the YADE_BATCH
+    environment variable that yade-batch sets for each job. Without either, returns `test`
+    unchanged. The job writes into <out>/<description>, out being the table's 'out' column or else
+    out/<table file name without extension>, so that every line has its own folder.
+    readParamsFromTable also sets O.tags 'description', 'params', 'line' and 'd.id' (kept by
+    to_yade's reset, written to results.json's yade_tags). ValueError for a column that is not a
+    SwellingTest field or a value that is not a literal, before any work."""
+    table_line = table_line if table_line is not None else os.environ.get("YADE_BATCH", "")
+    if not table_line:
+        return test
+    from .plugin import require
+    yade, _ = require("swelldem.scenario.from_batch_table")
+    from yade import utils
+    table, _, line = table_line.rpartition(":")
+    names = [f.name for f in fields(SwellingTest)]
+    try:
+        rows = utils.TableParamReader(table).paramDict()
+    except (OSError, IndexError) as e:
+        _bad("batch table", table_line, f"a readable yade-batch table file:line ({e})")
+    row = rows.get(int(line)) if line.isdigit() else None
+    if row is None:
+        _bad("batch table line", table_line, f"one of the table's lines {', '.join(map(str, sorted(rows)))}")
+    for col in row:
+        if col != "description" and not col.startswith("!") and col not in names:
+            _bad("batch table column", col, ", ".join(["description"] + names))
+    defaults = {name: getattr(test, name) for name in names}
+    try:
+        utils.readParamsFromTable(tableFileLine=table_line, noTableOk=False, **defaults)
+    except (NameError, SyntaxError) as e:  # eval of a value: an unquoted word, a space inside a value
+        _bad("batch table value", f"{table_line} ({e})", "Python literals without spaces, strings quoted: 'isr'")
+    from yade.params import table as values
+    kw = {name: getattr(values, name) for name in names}
+    if isinstance(kw["size_mm"], list):
+        kw["size_mm"] = tuple(kw["size_mm"])
+    base = kw["out"] if "out" in row else os.path.join("out", os.path.splitext(os.path.basename(table))[0])
+    kw["out"] = os.path.join(base, _job_folder_name(yade.Omega().tags["description"], line))
     return SwellingTest(**kw)
 
 
@@ -328,6 +381,21 @@ def prepare(test, extra_times=()):
     return kinds, dem.make_solver(test.solver, **settings)
 
 
+#: O.tags a yade-batch job carries (yade.utils.readParamsFromTable sets them), kept in results.json.
+BATCH_TAGS = ("id", "line", "description", "params", "defaultParams", "d.id")
+
+
+def batch_tags():
+    """The BATCH_TAGS present in O.tags, as a dict (empty outside YADE)."""
+    try:
+        from .plugin import require
+        yade, _ = require("swelldem.scenario.batch_tags")
+    except Exception:  # noqa: BLE001 - plain Python has no O.tags
+        return {}
+    tags = yade.Omega().tags
+    return {k: tags[k] for k in BATCH_TAGS if k in tags.keys()}
+
+
 def run(test, prepared=None, extra_times=(), after_step=None):
     """Runs one swelling test inside YADE; writes results.json, tables, plots and VTK into test.out.
     Order: prepare() (Python checks, then the plugin objects, whose constructors validate; pass
@@ -366,7 +434,7 @@ def run(test, prepared=None, extra_times=(), after_step=None):
            "n_contacts_by_kind": counts, "n_gel_pockets": int(len(gel)), "times_days": [], "swelling_strain_x": [],
            "swelling_strain_y": [], "unbalanced_ratio": [], "adr_iterations_per_step": [], "step_at_round_off": [], "adr_iterations": 0,
            "per_kind": {n: {"fn_p05_kN": [], "fn_p95_kN": [], "broken": [], "born_broken": []} for n in paper.KIND_NAMES},
-           "status": "running", "wall_s": 0.0}
+           "status": "running", "wall_s": 0.0, "yade_tags": batch_tags()}
     rec = recorder.StepRecorder(assembly, ys, solver, res, test.out, vtk_every=test.vtk_every)
     solver.stepHook = rec if after_step is None else (lambda: (rec(), after_step()))
     handlers = _catch_stop_signals()
@@ -387,7 +455,7 @@ def run(test, prepared=None, extra_times=(), after_step=None):
         res["wall_s"] = time.time() - t0
         for sig, handler in handlers.items():
             signal.signal(sig, handler)
-    recorder.export_vtk(test.out)
+    rec.export_vtk()
     report.write_results(test.out, res)
     report.write_all(test.out, res, assembly, recorder.broken_contacts(rec.bonded))
     return res

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 """What a swelling test records after every converged physical step, given to the solver as its
 ``stepHook`` (a Python callable the engine calls with no arguments after each converged step),
-and the VTK export through YADE's own exporter."""
+and the ParaView time series (swelldem.dem.vtk_series)."""
 import os
 import time
 
@@ -11,6 +11,7 @@ from ..measure import affine_strain
 from ..paper import KIND_NAMES
 from ..plugin import require
 from ..report import write_results
+from .vtk_series import VtkSeries
 
 
 def _yade():
@@ -59,8 +60,10 @@ class StepRecorder:
     iterations and round-off flag, and per contact kind the 5 % / 95 % normal-force quantiles
     [kN], the broken contacts (bonded at the start, broken since) and the contacts made during
     the run (born broken, 'born_broken', present at the step); then rewrites results.json in `out`
-    (a run that stops later keeps what it had) and, every vtk_every steps, the VTK files. Made
-    before the run starts: it takes the bonded contacts from O then."""
+    (a run that stops later keeps what it had) and, every vtk_every steps (0: none), the step's
+    VTK files into out/vtk/ (swelldem.dem.vtk_series; the step number in the file names is the
+    index into times_days). Made before the run starts: it takes the bonded contacts from O then,
+    and replaces the VTK series of an earlier run in out/vtk/."""
 
     def __init__(self, assembly, yscene, solver, res, out, vtk_every=0):
         self.a, self.ys, self.solver, self.res, self.out, self.vtk_every = assembly, yscene, solver, res, out, vtk_every
@@ -70,6 +73,7 @@ class StepRecorder:
         self.weights = np.where(assembly.coordination() >= 2, assembly.r ** 2, 0.0)
         self.t0 = time.time()
         self.bonded = bonded_pairs()
+        self.vtk = VtkSeries(os.path.join(out, "vtk"), self.bonded)
 
     def __call__(self):
         s = affine_strain(self.ref, self.ys.positions(), weights=self.weights)
@@ -92,17 +96,22 @@ class StepRecorder:
         r["adr_iterations"] = solver.totalIterations
         r["wall_s"] = time.time() - self.t0
         r["updated"] = time.time()  # [s since the epoch] of the last step written: a killed run stays "running"
-        if self.vtk_every and solver.step % self.vtk_every == 0:
-            export_vtk(self.out)
+        if self.vtk_every and len(r["times_days"]) % self.vtk_every == 0:
+            self.export_vtk()
         write_results(self.out, r)
 
+    def export_vtk(self):
+        """The VTK files of the last recorded step, unless already written (the run's end exports
+        its last step whatever vtk_every)."""
+        step = len(self.res["times_days"]) - 1
+        if step >= 0 and not self.vtk.exported(step):
+            self.vtk.export(step, self.res["times_days"][step])
 
-def export_vtk(out):
-    """Particles and contacts of O through YADE's own exporter into out/vtk/ (ParaView opens the
-    .vtu/.vtk files): aggregate id and displacement [m] of the discs; kind, Fn [N] and broken of the contacts."""
-    _yade()
-    from yade import export
-    os.makedirs(os.path.join(out, "vtk"), exist_ok=True)
-    vtk = export.VTKExporter(os.path.join(out, "vtk", "swelling"))
-    vtk.exportSpheres(what=dict(aggregateId="b.material.aggregateId", displacement="b.state.displ()"))
-    vtk.exportInteractions(what=dict(kind="i.phys.kindId", fn="i.phys.Fn", broken="float(i.phys.broken)"))
+
+def export_vtk(out, step, time_days, bonded=None):
+    """One snapshot of O as a ParaView series of one step in out/vtk/ (see
+    swelldem.dem.vtk_series; it replaces an earlier series there). step [-], time_days [day]:
+    the step's index and physical time; bonded: see contact_arrays. Returns the VtkSeries."""
+    series = VtkSeries(os.path.join(out, "vtk"), bonded)
+    series.export(step, time_days)
+    return series

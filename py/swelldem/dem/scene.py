@@ -22,6 +22,14 @@ def _yade(user="swelldem.dem.scene"):
     return require(user)
 
 
+def _plain(value):
+    """A numpy scalar (or 0-d array) as the Python number it holds: boost.python's converters for
+    the plugin's double, int and bool attributes take Python numbers only."""
+    if isinstance(value, np.generic) or (isinstance(value, np.ndarray) and value.ndim == 0):
+        return value.item()
+    return value
+
+
 def contact_kind(name, behaviour="elastic", young=30e9, b3="mortar", shear_ratio=0.3, swell_disp_inf=0.0, kinetics="isr",
                  damage=False, tensile_strength=4e6, **extra):
     """A ContactKind named `name` (kindId from swelldem.paper.KIND_IDS, 3 for other names) with the
@@ -29,7 +37,8 @@ def contact_kind(name, behaviour="elastic", young=30e9, b3="mortar", shear_ratio
     Units: young [Pa], swell_disp_inf [m], tensile_strength [Pa]. `extra` are further ContactKind
     attributes by their plugin names (e.g. residualFrictionAngle, swelling, tensileStrength); they
     override the values above. The ContactKind constructor validates every value and raises
-    ValueError naming it; an unknown name is a ValueError listing the known ones."""
+    ValueError naming it; an unknown name is a ValueError listing the known ones. Numbers may be
+    numpy scalars (numpy.float64, numpy.int64, ...)."""
     if behaviour not in BEHAVIOURS:
         raise ValueError(f"swelldem: behaviour = {behaviour!r} is out of range; allowed: {', '.join(BEHAVIOURS)}")
     if b3 not in paper.B3_Q:
@@ -38,6 +47,9 @@ def contact_kind(name, behaviour="elastic", young=30e9, b3="mortar", shear_ratio
         raise ValueError(f"swelldem: kinetics = {kinetics!r} is out of range; allowed: {', '.join(paper.KINETICS)}")
     _, W = _yade()
     check_kind_attributes(extra, f"ContactKind {name}")
+    young, shear_ratio, swell_disp_inf, damage, tensile_strength = (
+        _plain(v) for v in (young, shear_ratio, swell_disp_inf, damage, tensile_strength))
+    extra = {k: _plain(v) for k, v in extra.items()}
     q1, q2, q3, q4 = (q * 1e-12 for q in paper.B3_Q[b3])
     tau_c, tau_l, _ = paper.KINETICS[kinetics]
     swelling = bool(extra.pop("swelling", False)) or swell_disp_inf > 0  # a kind may swell through per-contact overrides only
