@@ -330,7 +330,12 @@ LogTimeSolver::StepOutcome LogTimeSolver::settleStep(const Balance& b, bool conv
 
 void LogTimeSolver::progressLine() const
 {
-	const double el = wallNow(), left = el / step * (nSteps() - step);
+	// The steps' cost is not uniform: cracking steps take many times the others. The estimate is the
+	// remaining steps at the larger of the mean step so far and the last step, so that it grows as
+	// soon as cracking starts instead of trailing it.
+	const double el   = wallNow();
+	const double last = stepWall.size() >= 2 ? stepWall.back() - stepWall[stepWall.size() - 2] : el;
+	const double left = std::max(el / step, last) * (nSteps() - step);
 	std::printf("swelldem: step %d/%d  t = %s d  %s iterations %ld%s (total %ld)  unbalanced %.2e  elapsed %.1f s  left ~%.1f s\n", step,
 	            nSteps(), num(physTime).c_str(), iterationName, iterInStep, (progressDetail ? progressDetail() : std::string()).c_str(), totalIterations, unbalanced, el, left);
 	std::fflush(stdout);

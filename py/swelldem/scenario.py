@@ -411,9 +411,11 @@ def run(test, prepared=None, extra_times=(), after_step=None):
     t0 = time.time()
     os.makedirs(test.out, exist_ok=True)
     overrides = {} if test.aggregate_area_fraction < 0 else {"aggregate_area_fraction": test.aggregate_area_fraction}
+    print(f"swelldem: set-up: mesostructure {test.size_mm[0]:g} x {test.size_mm[1]:g} mm, seed {test.seed}", flush=True)
     assembly = meso.generate(seed=test.seed, width_mm=test.size_mm[0], height_mm=test.size_mm[1], **overrides)
     assembly.save(os.path.join(test.out, "assembly.npz"))
     if test.parameters == "macro":
+        print("swelldem: set-up: calibrating the contact moduli (parameters = macro)", flush=True)
         cal = calibrate_modulus_factor(shear_ratio=test.shear_ratio)
         scale_kinds(kinds, cal["beta"], test.kind_params)
         # the specimen's moduli the contact values imply: beta x E_c (E_c = 1/J(28.01, 28) for mortar and ITZ)
@@ -425,6 +427,8 @@ def run(test, prepared=None, extra_times=(), after_step=None):
     d_inf = test.eps_inf * 2 * r_mean  # the paper's micro-macro rule (Table 3.2)
     set_swelling(test, kinds, d_inf)
     ys = dem.to_yade(assembly, kinds, solver)
+    print(f"swelldem: set-up: {len(assembly.x)} discs, {len(ys.contacts)} bonded contacts, "
+          f"{time.time() - t0:.1f} s", flush=True)
     gel = []
     if test.scenario == "asr-coarse":
         gel = dem.set_gel_pockets(ys, assembly, test.gel_fraction, d_inf, test.seed)
