@@ -257,7 +257,7 @@ dump({"iters": solver.totalIterations, "relax": getattr(solver, "relaxationItera
 
 
 def test_cracking_specimen_settles_by_newton_and_breaks_as_the_adr(yade_run):
-    # 20 mm ISR, elastic, damage on (74 % of the ITZ contacts break). Measured: 299 Newton
+    # 20 mm ISR, elastic, damage on (74 % of the ITZ contacts break). Measured: 285 Newton
     # iterations and no relaxation (16,161 iterations, 14,000 of them relaxation, with turning
     # contacts frozen instead of sliding contacts' shear-normal coupling and the line search; 4,988
     # with the coupling left out and no relaxation); broken % MORTAR / ITZ / AGG 0.73 / 74.44 / 5.82
