@@ -228,13 +228,10 @@ void ImplicitLogTimeSolver::newtonStep()
 	};
 	std::vector<SlidingCoupling> sliding;
 	double            kScale  = 0;                      // mean step stiffness kn'' of the contacts
-	std::vector<Real> radius(bodies.size(), 0.0);      // from the contacts' geometry (the shape is not declared here)
 	for (size_t c = 0; c < contacts.size(); ++c) {
 		const Interaction* I = contacts[c];
 		const auto*        g = static_cast<const ScGeom*>(I->geom.get());
 		kScale += std::abs(static_cast<const NormShearPhys*>(I->phys.get())->kn);
-		radius[I->id1] = std::max(radius[I->id1], g->radius1);
-		radius[I->id2] = std::max(radius[I->id2], g->radius2);
 		Real       kn, ks, slide;
 		const char state = contactTangent(I, kn, ks, slide);
 		changes += state != S.active[c];
@@ -313,14 +310,13 @@ void ImplicitLogTimeSolver::newtonStep()
 	if (!du.allFinite()) fail("the linear solve gave a non-finite displacement");
 	for (const auto& b : bodies) {
 		if (!b) continue;
-		State*     s = b->state.get();
 		const int* e = &S.dofOf[3 * b->id];
 		Vector2r   u(e[0] >= 0 ? du[e[0]] : 0.0, e[1] >= 0 ? du[e[1]] : 0.0);
 		Real       th = e[2] >= 0 ? du[e[2]] : 0.0;
 		// A mechanism's direction has next to no stiffness (the regularization), so its Newton move
 		// is unbounded: it goes at most maxMove radii per iteration, as if it slid or rolled.
-		if (radius[b->id] > 0) {
-			const Real cap = maxMove * radius[b->id];
+		if (bodyRadius[b->id] > 0) {
+			const Real cap = maxMove * bodyRadius[b->id];
 			if (u.norm() > cap) u *= cap / u.norm();
 			if (std::abs(th) > maxMove) th = th > 0 ? maxMove : -maxMove;
 		}
@@ -329,13 +325,16 @@ void ImplicitLogTimeSolver::newtonStep()
 	moveBodies(1.0);
 }
 
-Real ImplicitLogTimeSolver::residualMerit() const
+Real ImplicitLogTimeSolver::residualMerit()
 {
 	// From the scene and saved attributes alone (not from the linear system, which a loaded scene
-	// rebuilds later), so that a reload continues exactly.
+	// rebuilds later), so that a reload continues exactly. The discs' radii come from their
+	// contacts' geometry (the shape is not declared here); newtonStep, which runs after it in the
+	// same iteration, caps its moves with them.
 	const auto& bodies = scene->bodies->body;
-	std::vector<Real> radius(bodies.size(), 0.0);
-	const auto&       L = scene->interactions->linIntrs;
+	std::vector<Real>& radius = bodyRadius;
+	radius.assign(bodies.size(), 0.0);
+	const auto& L = scene->interactions->linIntrs;
 	for (size_t i = 0; i < scene->interactions->currSize; ++i) {
 		const Interaction* I = L[i].get();
 		if (!I->isReal()) continue;

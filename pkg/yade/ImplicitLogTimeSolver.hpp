@@ -67,10 +67,11 @@ public:
 
 private:
 	long relaxationAtStepStart = 0, factorizationsAtStepStart = 0; // for the progress line only
+	std::vector<Real> bodyRadius; // per body, the largest radius its real contacts give it (0: none); this iteration's
 	void                                  choosePins();
 	void                                  newtonStep();
 	void                                  moveBodies(Real fraction); // by fraction x lineMove, through the velocities
-	Real                                  residualMerit() const;     // |r| over the free DOFs, torques over the radius [N]
+	Real                                  residualMerit();           // |r| over the free DOFs, torques over the radius [N]; sets bodyRadius
 	std::unique_ptr<ImplicitLinearSystem> sys; // not saved: rebuilt from the scene, it gives the same factor
 };
 
