@@ -39,6 +39,31 @@ class YadeRun:
         return json.loads(res.read_text()) if res.exists() else None
 
 
+def swelling_pair(solver, angle=0.0):
+    """Script text: two free discs (R 0.5 mm) in contact at `angle` [rad] from the x axis, one
+    elastic swelling MORTAR kind (E 30 GPa, d_inf 1e-6 m, tau_c 50 d, tau_L 100 d), `solver` (a
+    Python expression) as the integrator; names R, E, D_INF, kind, a, b, solver, ip2."""
+    return f"""
+import math
+from yade import utils
+from swelldem import dem
+W = yade.wrapper
+R, E, D_INF = 0.5e-3, 30e9, 1e-6
+O.reset()
+mat = W.ConcreteMat(young=E, poisson=0.2, density=2400, aggregateId=-1)
+O.materials.append(mat)
+kind = W.ContactKind(name="MORTAR", behaviour="elastic", young=E, shearRatio=0.3, swelling=True, swellDispInf=D_INF,
+                     tauC=50.0, tauL=100.0)
+a = O.bodies.append(dem.disc((0, 0), R, mat))
+b = O.bodies.append(dem.disc((2 * R * math.cos({angle!r}), 2 * R * math.sin({angle!r})), R, mat))
+solver = {solver}
+ip2 = W.Ip2_ConcreteMat_ConcreteMat_SwellPhys(mortar=kind, itz=kind, agg=kind)
+O.engines = dem.engines(ip2, W.Law2_ScGeom_SwellPhys_AgingSwelling(), solver, detection_factor=1.05)
+utils.createInteraction(a, b)
+ip2.cohesive = False
+"""
+
+
 @pytest.fixture
 def yade_run(tmp_path):
     return YadeRun(tmp_path)

@@ -8,29 +8,12 @@ import math
 
 import pytest
 
-TWO_DISCS = r"""
-import math
-from yade import utils
-W = yade.wrapper
-R, E, D_INF = 0.5e-3, 30e9, 1e-6
-c, s = math.cos(ANGLE), math.sin(ANGLE)
-O.reset()
-mat = W.ConcreteMat(young=E, poisson=0.2, density=2400, aggregateId=-1)
-O.materials.append(mat)
-kind = W.ContactKind(name="MORTAR", behaviour="elastic", young=E, shearRatio=0.3, swelling=True, swellDispInf=D_INF,
-                     tauC=50.0, tauL=100.0)
-a = O.bodies.append(utils.sphere((0, 0, 0), R, material=mat))
-b = O.bodies.append(utils.sphere((2 * R * c, 2 * R * s, 0), R, material=mat))
-for i in (a, b):
-    O.bodies[i].state.blockedDOFs = "zXY"
-solver = W.AdrLogTimeIntegrator(tStart=1.0, tEnd=3650.0, stepsPerDecade=5, tolerance=1e-6, verbose=False,
-                                maxIterations=3000, **SETTINGS)
-ip2 = W.Ip2_ConcreteMat_ConcreteMat_SwellPhys(mortar=kind, itz=kind, agg=kind)
-O.engines = [W.ForceResetter(), W.InsertionSortCollider([W.Bo1_Sphere_Aabb(aabbEnlargeFactor=1.05)], verletDist=0),
-             W.InteractionLoop([W.Ig2_Sphere_Sphere_ScGeom(interactionDetectionFactor=1.05)], [ip2],
-                               [W.Law2_ScGeom_SwellPhys_AgingSwelling()]), solver]
-utils.createInteraction(a, b)
-ip2.cohesive = False
+from conftest import swelling_pair
+
+ADR = "W.AdrLogTimeIntegrator(tStart=1.0, tEnd=3650.0, stepsPerDecade=5, tolerance=1e-6, verbose=False, maxIterations=3000{settings})"
+
+# the run and what it records, after the scene of conftest.swelling_pair
+RUN = r"""
 error = ""
 try:
     while not solver.finished:
@@ -50,7 +33,7 @@ def larive(t):
 # along a diagonal it is loose by the |n_x| + |n_y| of the row sums.
 @pytest.mark.parametrize("angle", [0.0, 0.4])
 def test_two_free_discs_converge_adr(yade_run, angle):
-    res = yade_run(f"SETTINGS = {{}}\nANGLE = {angle}\n" + TWO_DISCS, threads=1)
+    res = yade_run(swelling_pair(ADR.format(settings=""), angle) + RUN, threads=1)
     assert res["error"] == "", res["error"]
     assert res["steps"] == 18
     opening = 1e-6 * (larive(3650.0) - larive(1.0))
@@ -63,5 +46,5 @@ def test_two_free_discs_converge_adr(yade_run, angle):
 
 
 def test_two_free_discs_on_the_bare_mass_bound_never_settle(yade_run):
-    res = yade_run("SETTINGS = {'massSafety': 1.0}\nANGLE = 0.0\n" + TWO_DISCS, threads=1)
+    res = yade_run(swelling_pair(ADR.format(settings=", massSafety=1.0")) + RUN, threads=1)
     assert "no equilibrium after maxIterations = 3000" in res["error"], res

@@ -279,6 +279,7 @@ def test_cracking_specimen_settles_by_newton_and_breaks_as_the_adr(yade_run):
 # b-c, which unloads a-b: it stays intact.
 SERIES = r"""
 from yade import utils
+from swelldem import dem
 W = yade.wrapper
 R, E = 0.5e-3, 30e9
 O.reset()
@@ -294,9 +295,7 @@ O.bodies[a].state.blockedDOFs = O.bodies[c].state.blockedDOFs = "xyzXYZ"
 O.bodies[b].state.blockedDOFs = "yzXYZ"
 solver = W.{solver}(tStart=1.0, tEnd=100.0, stepsPerDecade=1, verbose=False, breakOneAtATime={one}{extra})
 ip2 = W.Ip2_ConcreteMat_ConcreteMat_SwellPhys(mortar=kinds["MORTAR"], itz=kinds["ITZ"], agg=kinds["AGG"])
-O.engines = [W.ForceResetter(), W.InsertionSortCollider([W.Bo1_Sphere_Aabb(aabbEnlargeFactor=1.05)], verletDist=0),
-             W.InteractionLoop([W.Ig2_Sphere_Sphere_ScGeom(interactionDetectionFactor=1.05)], [ip2],
-                               [W.Law2_ScGeom_SwellPhys_AgingSwelling()]), solver]
+O.engines = dem.engines(ip2, W.Law2_ScGeom_SwellPhys_AgingSwelling(), solver, detection_factor=1.05)
 utils.createInteraction(a, b)
 utils.createInteraction(b, c)
 ip2.cohesive = False

@@ -10,25 +10,10 @@ import math
 
 import pytest
 
+from conftest import swelling_pair
+
+# after the scene of conftest.swelling_pair
 SCRIPT = r"""
-from yade import utils
-W = yade.wrapper
-R, E, D_INF = 0.5e-3, 30e9, 1e-6
-O.reset()
-mat = W.ConcreteMat(young=E, poisson=0.2, density=2400, aggregateId=-1)
-O.materials.append(mat)
-kind = W.ContactKind(name="MORTAR", behaviour="elastic", young=E, swelling=True, swellDispInf=D_INF, tauC=50.0, tauL=100.0)
-a = O.bodies.append(utils.sphere((0, 0, 0), R, material=mat))
-b = O.bodies.append(utils.sphere((2 * R, 0, 0), R, material=mat))
-for i in (a, b):
-    O.bodies[i].state.blockedDOFs = "zXY"
-solver = W.ImplicitLogTimeSolver(tStart=1.0, tEnd=200.0, stepsPerDecade=5, verbose=False)
-ip2 = W.Ip2_ConcreteMat_ConcreteMat_SwellPhys(mortar=kind, itz=kind, agg=kind)
-O.engines = [W.ForceResetter(), W.InsertionSortCollider([W.Bo1_Sphere_Aabb(aabbEnlargeFactor=1.05)], verletDist=0),
-             W.InteractionLoop([W.Ig2_Sphere_Sphere_ScGeom(interactionDetectionFactor=1.05)], [ip2],
-                               [W.Law2_ScGeom_SwellPhys_AgingSwelling()]), solver]
-utils.createInteraction(a, b)
-ip2.cohesive = False
 log = {"errors": [], "changed_at": None}
 def hook():
     if solver.step == 5 and log["changed_at"] is None:
@@ -56,7 +41,8 @@ def xi(t, tc, tl=100.0):
 
 @pytest.mark.parametrize("change", [False, True])
 def test_live_values_refused_or_effective_from_the_next_step(yade_run, change):
-    res = yade_run(f"CHANGE = {change}\n" + SCRIPT, threads=1)
+    solver = "W.ImplicitLogTimeSolver(tStart=1.0, tEnd=200.0, stepsPerDecade=5, verbose=False)"
+    res = yade_run(f"CHANGE = {change}\n" + swelling_pair(solver) + SCRIPT, threads=1)
     for attr, *rest in res["errors"]:
         assert rest[0] != "accepted", attr
         msg, kept = rest
