@@ -17,7 +17,8 @@
 
 #include <string>
 
-// X(type, name, member, default, "doc [unit]")
+// X(type, name, member, default, "doc [unit]"); a default the core struct already holds is named from
+// there (KelvinChainOptions, B3Params), so that each has one home.
 #define SWELLDEM_KIND_PARAMETERS(X)                                                                                        \
     X(double, young, contactModulus, 30e9, "Contact modulus E_c of 'elastic' kinds; kn = E_c A / L [Pa]")                  \
     X(double, shearRatio, shearRatio, 0.3, "alpha = ks / kn [-]")                                                          \
@@ -25,11 +26,11 @@
     X(double, q2, b3.q2, 108.1e-12, "B3 aging viscoelastic compliance q2 [1/Pa]")                                          \
     X(double, q3, b3.q3, 44.2e-12, "B3 non-aging viscoelastic compliance q3 [1/Pa]")                                       \
     X(double, q4, b3.q4, 14.3e-12, "B3 flow compliance q4 [1/Pa]")                                                         \
-    X(double, elasticLag, b3.elasticLag, 0.01,                                                                            \
+    X(double, elasticLag, b3.elasticLag, B3Params().elasticLag,                                                                          \
       "Load duration of the static modulus E(t) = 1/J(t + elasticLag, t) of 'aging-elastic' kinds [day]")                 \
-    X(double, kelvinUnitsPerDecade, chain.unitsPerDecade, 1.0,                                                            \
+    X(double, kelvinUnitsPerDecade, chain.unitsPerDecade, KelvinChainOptions().unitsPerDecade,                                                          \
       "Kelvin units per decade of retardation time (cost against accuracy) [1/decade]")                                    \
-    X(double, kelvinMarginAbove, chain.marginAbove, 2.0,                                                                  \
+    X(double, kelvinMarginAbove, chain.marginAbove, KelvinChainOptions().marginAbove,                                                                \
       "Decades of retardation times beyond the run's longest load duration t_end - t_start: the chain's slowest unit "     \
       "is >= that duration x 10^margin, so creep late in the run is not cut off by a missing unit (0..6) [decade]")      \
     X(bool, swelling, swelling, false, "Evaluate swelling kinetics for this kind (set when any of its contacts swells) [-]") \
