@@ -96,6 +96,8 @@ YADE_SCRIPTS = [
     ("table_3_2.py", ("--young", "nan"), FORM.format("young", "nan")),
     ("table_3_2.py", ("--steps-per-decade", "20000"), "stepsPerDecade = 20000 is out of range"),  # the plugin's check, still first
     ("two_particles.py", ("--steps-per-decade", "nan"), FORM.format("steps_per_decade", "nan")),
+    ("bench/bench_implicit_damage.py", ("--size-mm", "nan", "10"), FORM.format("size_mm", "(nan, 10.0)")),
+    ("bench/bench_implicit_damage.py", ("--tolerance", "-1"), FORM.format("tolerance", "-1.0")),
     ("two_particles.py", ("--t-start", "inf"), FORM.format("t_start", "inf")),
 ]
 
