@@ -23,8 +23,10 @@ void AdrLogTimeIntegrator::action()
 	const Balance b = measureBalance();
 	// A break leaves kn, ks (and so the Gershgorin bound) as they are: only new or lost contacts
 	// and a new step's stiffness call for new masses.
-	if (b.nReal != relaxation.nContactsSeen || iterInStep == 1 || relaxation.massX.size() != scene->bodies->body.size())
+	if (b.nReal != relaxation.nContactsSeen || iterInStep == 1 || relaxation.massX.size() != scene->bodies->body.size()) {
 		relaxation.computeMasses(scene, massSafety);
+		forEachSpring([this](int id, int axis, Real k) { relaxation.addStiffness(scene, massSafety, id, axis, k); });
+	}
 	if (settleStep(b, b.ratio <= tolerance || b.atRoundOff) == StepOutcome::Committed) {
 		relaxation.rest();
 		return;

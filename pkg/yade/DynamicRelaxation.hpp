@@ -28,6 +28,11 @@ public:
 	/// A new physical step starts from rest.
 	void rest() { std::fill(prevForce.begin(), prevForce.end(), 0.0); }
 	void computeMasses(const Scene* scene, Real massSafety);
+	/// Adds a stiffness k [N/m] acting on one body's axis (a spring) to its mass, as computeMasses does for contacts.
+	void addStiffness(const Scene* scene, Real massSafety, int id, int axis, Real k)
+	{
+		(axis == 0 ? massX : massY)[id] += 0.25 * scene->dt * scene->dt * massSafety * k;
+	}
 	/// Damping c [1/dt] from the Rayleigh quotient, at most maxDamping / dt.
 	Real damping(Scene* scene, Real maxDamping) const; // (YADE's force getter is not const)
 	void leapfrog(Scene* scene, Real c);

@@ -254,6 +254,10 @@ void ImplicitLogTimeSolver::newtonStep()
 			if (slot[k] >= 0) v[slot[k]] += kn * bn[kPairs.a[k]] * bn[kPairs.b[k]] + ks * bs[kPairs.a[k]] * bs[kPairs.b[k]];
 	}
 	activeChanges = changes;
+	forEachSpring([&](int id, int axis, Real k) {
+		const int e = S.dofOf[3 * id + axis];
+		if (e >= 0) v[S.diagSlot[e]] += k;
+	});
 	// A DOF that no contact holds in the current state (a loose disc, a disc whose contacts are all
 	// open) moves under its own load as if one typical contact held it, so that it can close them.
 	kScale = contacts.empty() ? 1.0 : kScale / contacts.size();
@@ -406,7 +410,10 @@ void ImplicitLogTimeSolver::action()
 	}
 	if (relaxing) {
 		if (b.ratio > relaxTolerance * std::pow(1e-2, relaxPhase - 1)) {
-			if (b.nReal != relax.nContactsSeen) relax.computeMasses(scene, DynamicRelaxation::kDefaultMassSafety);
+			if (b.nReal != relax.nContactsSeen) {
+				relax.computeMasses(scene, DynamicRelaxation::kDefaultMassSafety);
+				forEachSpring([this](int id, int axis, Real k) { relax.addStiffness(scene, DynamicRelaxation::kDefaultMassSafety, id, axis, k); });
+			}
 			relax.leapfrog(scene, relax.damping(scene, DynamicRelaxation::kDefaultMaxDamping));
 			++relaxationIterations;
 			return;

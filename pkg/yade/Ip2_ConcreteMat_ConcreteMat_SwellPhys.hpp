@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // Creates SwellPhys for contacts between ConcreteMat particles and assigns the contact kind:
-// mortar-mortar MORTAR; mortar-aggregate or two different aggregates ITZ; one aggregate AGG.
+// mortar-mortar MORTAR; mortar-aggregate or two different aggregates ITZ; one aggregate AGG; with a
+// platen (a Wall of a ConcreteMat with platen set) PLATEN.
 #pragma once
 #include "ConcreteMat.hpp"
 #include "SwellPhys.hpp"
@@ -13,6 +14,7 @@ public:
 	X(shared_ptr<ContactKind>, mortar, shared_ptr<ContactKind>(), swelldem_attr::Setting, "Kind of mortar-mortar contacts (MORTAR) [-]")                                        \
 	X(shared_ptr<ContactKind>, itz, shared_ptr<ContactKind>(), swelldem_attr::Setting, "Kind of mortar-aggregate and aggregate-aggregate contacts (ITZ) [-]")                   \
 	X(shared_ptr<ContactKind>, agg, shared_ptr<ContactKind>(), swelldem_attr::Setting, "Kind of contacts inside one aggregate (AGG) [-]")                                       \
+	X(shared_ptr<ContactKind>, platen, shared_ptr<ContactKind>(), swelldem_attr::Setting, "Kind of contacts with a platen (ConcreteMat.platen; PLATEN) [-]")                  \
 	X(Real, thickness, 1.0, swelldem_attr::Setting, "Out-of-plane thickness b of the 2D model; fallback facet area 2 min(r1, r2) b when no Laguerre facet is given [m]")      \
 	X(bool, cohesive, true, swelldem_attr::Setting, "Contacts created while true are intact (bonded) and stress-free as created; while false they are born broken "   \
 	                             "(compression and friction only) and stress-free when the discs just touch [-]")

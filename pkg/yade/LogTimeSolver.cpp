@@ -39,6 +39,13 @@ void LogTimeSolver::postLoad()
 	core::requirePositive(getClassName() + ".divergenceRatio", divergenceRatio);
 	core::require(colliderPeriod >= 1, getClassName() + ".colliderPeriod", colliderPeriod, ">= 1");
 	core::requireOpenInterval(getClassName() + ".relativeForceFloor", relativeForceFloor, 0, 1);
+	// The three spring lists are set one after the other: their lengths are compared at the start.
+	for (size_t i = 0; i < springBodies.size(); ++i)
+		core::require(springBodies[i] >= 0, getClassName() + ".springBodies[" + std::to_string(i) + "]", springBodies[i], ">= 0 (a body id)");
+	for (size_t i = 0; i < springAxes.size(); ++i)
+		core::require(springAxes[i] == 0 || springAxes[i] == 1, getClassName() + ".springAxes[" + std::to_string(i) + "]", springAxes[i], "0 (x) or 1 (y)");
+	for (size_t i = 0; i < springStiffness.size(); ++i)
+		core::requireNonNegative(getClassName() + ".springStiffness[" + std::to_string(i) + "] [N/m]", springStiffness[i]);
 }
 
 void LogTimeSolver::afterLoad()
@@ -168,6 +175,18 @@ void LogTimeSolver::initialize()
 	brokenSeen = breakEvents();
 	heldPos.clear();
 	trackHeldBodies();
+	const string n = std::to_string(springBodies.size());
+	core::require(springAxes.size() == springBodies.size(), getClassName() + ".springAxes (length)", double(springAxes.size()), n + ", as springBodies");
+	core::require(springStiffness.size() == springBodies.size(), getClassName() + ".springStiffness (length)", double(springStiffness.size()),
+	              n + ", as springBodies");
+	springAnchors.clear();
+	for (size_t i = 0; i < springBodies.size(); ++i) {
+		const auto& B = scene->bodies->body;
+		if (size_t(springBodies[i]) >= B.size() || !B[springBodies[i]])
+			throw std::invalid_argument("swelldem: " + getClassName() + ".springBodies[" + std::to_string(i) + "] = " + std::to_string(springBodies[i])
+			                            + " is not a body of the scene");
+		springAnchors.push_back(B[springBodies[i]]->state->se3.position[springAxes[i]]);
+	}
 	if (verbose) {
 		std::printf("swelldem: %s, %d physical steps from %s to %s days (%s a decade), tolerance %s\n", getClassName().c_str(), nSteps(),
 		            num(tStart).c_str(), num(tEnd).c_str(), num(stepsPerDecade).c_str(), num(tolerance).c_str());
@@ -204,10 +223,21 @@ bool LogTimeSolver::startIteration()
 		refreshKinds();
 		kindsStale = false;
 	}
+	applySprings();
 	scene->forces.sync();
 	++iterInStep;
 	++totalIterations;
 	return true;
+}
+
+void LogTimeSolver::applySprings()
+{
+	for (size_t i = 0; i < springBodies.size() && i < springAnchors.size(); ++i) {
+		const int axis = springAxes[i];
+		Vector3r  f    = Vector3r::Zero();
+		f[axis]        = -springStiffness[i] * (scene->bodies->body[springBodies[i]]->state->se3.position[axis] - springAnchors[i]);
+		scene->forces.addForce(springBodies[i], f);
+	}
 }
 
 void LogTimeSolver::measureExternalScale(long nFree)

@@ -7,7 +7,8 @@
 // AdrLogTimeIntegrator (adaptive dynamic relaxation, the paper's method) and ImplicitLogTimeSolver
 // (Newton iterations with a sparse Cholesky factor) derive from it and implement action() with
 // the helpers below. Imposed displacements: move a held body (blockedDOFs x or y) by setting its
-// position, e.g. in the stepHook; constant loads: YADE's ForceEngine or O.forces.setPermF. 2D only: discs in the plane z = 0 with z translation and x, y rotations blocked.
+// position, e.g. in the stepHook; constant loads: YADE's ForceEngine or O.forces.setPermF; a body
+// held elastically (a partially restrained platen): springBodies. 2D only: discs in the plane z = 0 with z translation and x, y rotations blocked.
 #pragma once
 #include <functional>
 #include "Law2_ScGeom_SwellPhys_AgingSwelling.hpp"
@@ -38,6 +39,10 @@ public:
 	X(bool, breakOneAtATime, false, swelldem_attr::Setting,                                                                                              \
 	  "At each equilibrium break only the most overloaded contact, then iterate again (sequentially linear analysis), instead of every "       \
 	  "overloaded contact at once; for measuring what the break rule changes (docs/performance.md) [-]")                                           \
+	X(std::vector<int>, springBodies, std::vector<int>(), swelldem_attr::Setting,                                                                       \
+	  "Bodies held by a linear spring to where they are at the run's start, along springAxes (a platen under partial restraint) [-]")             \
+	X(std::vector<int>, springAxes, std::vector<int>(), swelldem_attr::Setting, "Axis of each spring: 0 x, 1 y [-]")                                  \
+	X(std::vector<Real>, springStiffness, std::vector<Real>(), swelldem_attr::Setting, "Stiffness of each spring, >= 0 [N/m]")                      \
 	X(bool, verbose, true, swelldem_attr::Setting, "Print a progress line per physical step [-]")                                                      \
 	X(std::vector<Real>, times, std::vector<Real>(), swelldem_attr::Result, "Physical times of the run, tStart first (set at the first iteration) [day]") \
 	X(int, step, 0, swelldem_attr::Result, "Current physical step (1..nSteps; step i goes from times[i-1] to times[i]) [-]")                           \
@@ -57,6 +62,7 @@ public:
 	X(Real, externalScale, 0.0, swelldem_attr::Internal, "Mean external load on the free bodies, measured at the step's first iteration [N]")        \
 	X(long, nRealSeen, -1, swelldem_attr::Internal, "Real contacts at the last iteration [-]")                                                        \
 	X(std::vector<Real>, heldPos, std::vector<Real>(), swelldem_attr::Internal, "Positions (x, y) of the bodies at the end of the last action [m]")  \
+	X(std::vector<Real>, springAnchors, std::vector<Real>(), swelldem_attr::Internal, "Position of each spring's body at the run's start [m]")      \
 	X(Real, wallBefore, 0.0, swelldem_attr::Internal, "Wall time of the run before this session (O.load) [s]")
 	SWELLDEM_CLASS(LogTimeSolver, GlobalEngine,
 	               "Base of swelldem's quasi-static log-time solvers (AdrLogTimeIntegrator, ImplicitLogTimeSolver); not usable "
@@ -98,6 +104,12 @@ protected:
 	/// stepHook or between O.run calls) gets the velocity of that move for one pass, so that YADE's
 	/// contact geometry, which integrates the shear from velocities, sees it as a displacement.
 	void trackHeldBodies();
+	/// Adds each spring's stiffness to the diagonal entry of its body's axis: stiff(body id, axis, k).
+	template <class F> void forEachSpring(F stiff) const
+	{
+		for (size_t i = 0; i < springBodies.size(); ++i)
+			stiff(springBodies[i], springAxes[i], springStiffness[i]);
+	}
 	/// Calls trackHeldBodies() at every exit of an action() after startIteration().
 	struct TrackHeldBodiesAtExit {
 		LogTimeSolver* self;
@@ -122,6 +134,7 @@ private:
 	long   breakOverloaded();
 	void   controlCollider();
 	void   measureExternalScale(long nFree);
+	void   applySprings();
 	void   runStepHook();
 	void   progressLine() const;
 	double wallNow() const;

@@ -1,0 +1,181 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""Rigid platens on the sides of a specimen: free, fixed (restrained), at a constant applied
+stress, or held by a spring (partial restraint), per axis.
+
+Each loaded axis gets two YADE Wall bodies at the specimen's extreme disc edges. The low one
+(left, bottom) is fixed; the high one (right, top) is fixed, loaded by a constant force (YADE's
+ForceEngine) or held by a spring (the solver's springBodies), and moves along its axis only. A
+fixed low platen and a loaded high one are what a press or a restraining frame does, and they
+leave no rigid-body mode in the loaded direction.
+
+The discs whose edge lies within `gap` of a platen get a contact with it at the set-up: intact
+contacts of the PLATEN kind (elastic, stress-free as created, never breaking), made through the
+one contact path (Ip2_ConcreteMat_ConcreteMat_SwellPhys with its `platen` kind, the same law).
+Their stiffness is kn = E_platen A / L with the Ip2's fallback facet A = 2 r b and L = 2 r, so
+kn = E_platen b per contact; their shear ratio is small (PLATEN_SHEAR_RATIO): lubricated
+platens, which restrain the specimen along their axis and barely across it. Discs that reach a
+platen later get a cohesionless (compression-only) contact from the collider, like every contact
+made during a run.
+
+Platen stress [Pa] (compression negative) is the platens' contact force along their axis over the
+specimen's nominal side (height for the x platens, width for the y platens) times the thickness:
+the mean of the two platens' reactions. Platen displacement [m] is the change of the distance
+between the two platens (elongation positive).
+"""
+from dataclasses import dataclass
+
+import numpy as np
+
+from .. import options
+from . import scene as sc
+
+#: Name of the platens' contact kind (kindId 3: not one of the paper's kinds).
+PLATEN = "PLATEN"
+#: Contact modulus of platen contacts [Pa]: steel.
+PLATEN_YOUNG = 200e9
+#: ks / kn of platen contacts [-]: lubricated platens (nearly frictionless, but not a mechanism).
+PLATEN_SHEAR_RATIO = 1e-3
+BOUNDARY_TYPES = ("free", "fixed", "stress", "spring")
+AXES = ("x", "y")
+
+
+@dataclass(frozen=True)
+class Boundary:
+    """The condition of one axis: type 'free', 'fixed', 'stress' (value: applied stress [Pa],
+    compression negative) or 'spring' (value: stiffness [N/m per metre of thickness])."""
+    type: str = "free"
+    value: float = 0.0
+
+    @classmethod
+    def parse(cls, name, text):
+        """'free', 'fixed', 'stress:S' or 'spring:K' -> Boundary; ValueError in the options'
+        message form naming `name` otherwise."""
+        allowed = "free, fixed, stress:S (S in Pa, finite, compression negative) or spring:K (K in N/m per metre of thickness, 0 < K < inf)"
+        if not isinstance(text, str):
+            options.bad(name, text, allowed)
+        head, colon, tail = text.strip().partition(":")
+        if head in ("free", "fixed") and not colon:
+            return cls(head)
+        if head not in ("stress", "spring") or not colon:
+            options.bad(name, text, allowed)
+        try:
+            value = float(tail)
+        except ValueError:
+            options.bad(name, text, allowed)
+        if not np.isfinite(value) or (head == "spring" and value <= 0):
+            options.bad(name, text, allowed)
+        return cls(head, value)
+
+    def __str__(self):
+        return self.type if self.type in ("free", "fixed") else f"{self.type}:{self.value:g}"
+
+
+class Platens:
+    """The platens of a scene (see the module's doc): body ids per axis, and their readings."""
+
+    def __init__(self, assembly, boundaries, walls, area):
+        self.assembly, self.boundaries, self.walls, self.area = assembly, boundaries, walls, area
+        yade, _ = sc.require("swelldem.dem.platens")
+        O = yade.Omega()
+        self.start = {a: O.bodies[hi].state.pos[k] - O.bodies[lo].state.pos[k]
+                      for k, a in enumerate(AXES) if a in walls for lo, hi in [walls[a]]}
+
+    def force_on(self, body_id, axis):
+        """Sum of the contact forces on one body along axis k (0 x, 1 y) [N]."""
+        yade, _ = sc.require("swelldem.dem.platens")
+        O = yade.Omega()
+        total = 0.0
+        for I in O.interactions.withBody(body_id):
+            if not I.isReal:
+                continue
+            f = -(I.phys.normalForce + I.phys.shearForce)  # the law's force on body id1
+            total += float(f[axis]) if I.id1 == body_id else -float(f[axis])
+        return total
+
+    def stress(self, axis):
+        """Platen stress along axis 'x' or 'y' [Pa], compression negative; 0 without platens."""
+        if axis not in self.walls:
+            return 0.0
+        k = AXES.index(axis)
+        lo, hi = self.walls[axis]
+        return 0.5 * (self.force_on(lo, k) - self.force_on(hi, k)) / self.area[axis]
+
+    def displacement(self, axis):
+        """Change of the platens' distance along axis 'x' or 'y' [m] (elongation positive); 0 without platens."""
+        if axis not in self.walls:
+            return 0.0
+        yade, _ = sc.require("swelldem.dem.platens")
+        O = yade.Omega()
+        k = AXES.index(axis)
+        lo, hi = self.walls[axis]
+        return float(O.bodies[hi].state.pos[k] - O.bodies[lo].state.pos[k] - self.start[axis])
+
+
+def add_platens(assembly, yscene, boundary_x=Boundary(), boundary_y=Boundary(), young=PLATEN_YOUNG,
+                shear_ratio=PLATEN_SHEAR_RATIO, gap=None):
+    """Adds the platens of the non-free axes to the scene made by swelldem.dem.to_yade (before
+    the run starts); returns a :class:`Platens`, or None when both axes are free.
+    gap [m]: discs whose edge is within it of a platen are in contact with it (default 0.05 Rmax,
+    the mesostructure's own largest contact gap)."""
+    boundaries = {"x": boundary_x, "y": boundary_y}
+    for a, b in boundaries.items():
+        if not isinstance(b, Boundary) or b.type not in BOUNDARY_TYPES:
+            options.bad(f"boundary_{a}", b, "a swelldem.dem.platens.Boundary")
+    if all(b.type == "free" for b in boundaries.values()):
+        return None
+    yade, W = sc.require("swelldem.dem.platens")
+    O = yade.Omega()
+    from .scene import contact_kind
+    kind = contact_kind(PLATEN, behaviour="elastic", young=young, shear_ratio=shear_ratio, damage=False)
+    ip2, solver = yscene.ip2, yscene.solver
+    ip2.platen = kind
+    # the platens' geometry and bounds: Wall-disc contacts next to the disc-disc ones
+    for e in O.engines:
+        if getattr(e, "label", "") == "iloop":
+            e.geomDispatcher.functors = list(e.geomDispatcher.functors) + [W.Ig2_Wall_Sphere_ScGeom()]
+        elif getattr(e, "label", "") == "collider":
+            e.boundDispatcher.functors = list(e.boundDispatcher.functors) + [W.Bo1_Wall_Aabb()]
+    gap = 0.05 * float(assembly.r.max()) if gap is None else gap
+    thickness = float(assembly.thickness_m)
+    centre = {"x": assembly.x, "y": assembly.y}
+    side = {"x": assembly.height_m, "y": assembly.width_m}  # the platen's nominal length
+    walls, area, forces = {}, {}, []
+    ip2.cohesive = True
+    try:
+        for k, a in enumerate(AXES):
+            b = boundaries[a]
+            if b.type == "free":
+                continue
+            c = centre[a]
+            lo_edge, hi_edge = float(np.min(c - assembly.r)), float(np.max(c + assembly.r))
+            ids = []
+            for pos, sense, moves in ((lo_edge, 1, False), (hi_edge, -1, b.type != "fixed")):
+                mat = W.ConcreteMat(platen=True, label=f"platen_{a}_{'high' if moves or sense < 0 else 'low'}")
+                O.materials.append(mat)
+                where = [0.0, 0.0, 0.0]
+                where[k] = pos
+                body = yade.utils.wall(tuple(where), axis=k, sense=sense, material=mat)
+                body.state.blockedDOFs = ("yzXYZ" if a == "x" else "xzXYZ") if moves else "xyzXYZ"
+                wid = O.bodies.append(body)
+                ids.append(wid)
+                near = np.flatnonzero((c - assembly.r - lo_edge < gap) if sense > 0 else (hi_edge - c - assembly.r < gap))
+                for i in near:
+                    I = yade.utils.createInteraction(wid, int(yscene.ids[i]))
+                    if I is None or not I.isReal:
+                        raise RuntimeError(f"swelldem: the platen contact of disc {int(i)} did not become a real interaction")
+            walls[a] = tuple(ids)
+            area[a] = side[a] * thickness
+            hi = ids[1]
+            if b.type == "stress":
+                f = [0.0, 0.0, 0.0]
+                f[k] = b.value * area[a]  # compression (value < 0) pushes the high platen towards the specimen
+                forces.append(W.ForceEngine(ids=[hi], force=tuple(f), label=f"platen_{a}_load"))
+            elif b.type == "spring":
+                solver.springBodies = list(solver.springBodies) + [hi]
+                solver.springAxes = list(solver.springAxes) + [k]
+                solver.springStiffness = list(solver.springStiffness) + [b.value * thickness]
+    finally:
+        ip2.cohesive = False
+    if forces:  # before the solver, the last engine
+        O.engines = O.engines[:-1] + forces + [O.engines[-1]]
+    return Platens(assembly, boundaries, walls, area)

@@ -1,0 +1,116 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""Platens (swelldem.dem.platens) against closed forms evaluated here: a row of discs between
+x platens, elastic contacts, with both solvers.
+
+The row: N equal discs (radius R) touching along x, N - 1 bonded MORTAR contacts (kn_c = E_c b:
+the Ip2's fallback facet 2 R b over the length 2 R), whose free swelling displacement is
+d_inf xi(t), and one PLATEN contact at each end (kn_p = E_p b). Everything is in series, so with
+S = (N - 1)/kn_c + 2/kn_p the contact force F is:
+- fixed platens:    (N - 1)(F/kn_c + d) + 2 F/kn_p = 0           -> F = -(N - 1) d / S;
+- a spring K b:     the same elongation = -F / (K b)              -> F = -(N - 1) d / (S + 1/(K b));
+- applied stress s: F = s H b, and the platens' distance changes by F S (no swelling).
+Larive's xi is evaluated with numpy (swelldem.paper.larive_xi), not by the plugin."""
+import math
+
+import numpy as np
+import pytest
+
+from swelldem import options
+from swelldem.dem.platens import PLATEN_YOUNG, Boundary
+from swelldem.paper import larive_xi
+
+N, R, E, D_INF, B = 5, 0.5e-3, 30e9, 1e-6, 0.01
+H = 2 * R  # the row's nominal height: the platens' length
+
+ROW = r"""
+import math, types
+import numpy as np
+from swelldem import dem
+from swelldem.dem import platens as P
+W = yade.wrapper
+N, R, E, D_INF, B = {N}, {R}, {E}, {D_INF}, {B}
+kinds = {{"MORTAR": dem.contact_kind("MORTAR", behaviour="elastic", young=E, swell_disp_inf=D_INF, kinetics="isr")}}
+solver = dem.make_solver("{solver}", tStart=1.0, tEnd={t_end}, stepsPerDecade=4, verbose=False{tol})
+x = R + 2 * R * np.arange(N)
+a = types.SimpleNamespace(x=x, y=np.zeros(N), r=np.full(N, R), width_m=2 * R * N, height_m=2 * R, thickness_m=B)
+mortar = W.ConcreteMat(aggregateId=-1)
+ip2 = W.Ip2_ConcreteMat_ConcreteMat_SwellPhys(mortar=kinds["MORTAR"], thickness=B, cohesive=True)
+ids, _ = dem.build_scene(x, np.zeros(N), np.full(N, R), [mortar], ip2, W.Law2_ScGeom_SwellPhys_AgingSwelling(), solver,
+                         contacts=[(i, i + 1) for i in range(N - 1)])
+ys = types.SimpleNamespace(ip2=ip2, solver=solver, ids=ids)
+ip2.cohesive = False
+pl = P.add_platens(a, ys, boundary_x=P.Boundary.parse("boundary_x", "{bx}"))
+rows = []
+def record():
+    rows.append({{"t": solver.physTime, "fn": [O.interactions[i, i + 1].phys.Fn for i in range(N - 1)],
+                 "stress": pl.stress("x"), "disp": pl.displacement("x"), "stress_y": pl.stress("y")}})
+solver.stepHook = record
+dem.run_to_end(solver)
+dump(rows)
+"""
+
+
+def row(yade_run, solver, bx, t_end=3650.0):
+    tol = ", tolerance=1e-9" if solver == "adr" else ""
+    return yade_run(ROW.format(N=N, R=R, E=E, D_INF=D_INF, B=B, solver=solver, bx=bx, t_end=t_end, tol=tol))
+
+
+KN_C, KN_P = E * B, PLATEN_YOUNG * B
+SERIES = (N - 1) / KN_C + 2 / KN_P
+
+
+# Largest relative errors measured over the steps (/tmp runs of these scenes): fixed, implicit
+# 7.5e-12, ADR at tolerance 1e-9 9.6e-8; spring, implicit 7.2e-10, ADR 1.8e-5 (its first step,
+# whose tiny load meets the ADR's relative force floor); stress, implicit 7.3e-11, ADR 1.4e-8.
+# Bounds: 10x or more the worst measured of each solver in each test.
+@pytest.mark.parametrize("solver,rel", [("implicit", 1e-10), ("adr", 1e-6)])
+def test_fixed_platens_restrain_swelling_as_the_series_stiffness_implies(yade_run, solver, rel):
+    rows = row(yade_run, solver, "fixed")
+    for r in rows:
+        f = -(N - 1) * D_INF * (larive_xi(r["t"]) - larive_xi(1.0)) / SERIES
+        assert np.allclose(r["fn"], f, rtol=rel, atol=rel * abs(f) + 1e-300), (r["t"], r["fn"], f)
+        # the platens' stress is the row's force over the platen's area H b; y has no platens
+        assert r["stress"] == pytest.approx(f / (H * B), rel=rel)
+        assert r["stress_y"] == 0.0
+        assert abs(r["disp"]) < 1e-12 * N * R
+    assert rows[-1]["fn"][0] < 0  # compression
+
+
+@pytest.mark.parametrize("solver,rel", [("implicit", 1e-8), ("adr", 2e-4)])
+def test_spring_platen_gives_partial_restraint(yade_run, solver, rel):
+    k = 1e9  # [N/m per metre of thickness]: K b = 1e7 N/m, of the order of the row's own stiffness
+    rows = row(yade_run, solver, f"spring:{k:g}")
+    for r in rows:
+        dxi = larive_xi(r["t"]) - larive_xi(1.0)
+        f = -(N - 1) * D_INF * dxi / (SERIES + 1 / (k * B))
+        assert r["fn"][0] == pytest.approx(f, rel=rel, abs=1e-30)
+        assert r["disp"] == pytest.approx(-f / (k * B), rel=rel, abs=1e-30)
+    free = (N - 1) * D_INF * (larive_xi(rows[-1]["t"]) - larive_xi(1.0))
+    assert 0 < rows[-1]["disp"] < free  # partial: some of the free elongation, not all
+
+
+@pytest.mark.parametrize("solver,rel", [("implicit", 1e-9), ("adr", 2e-7)])
+def test_applied_stress_is_carried_at_every_step(yade_run, solver, rel):
+    s = -10e6
+    rows = row(yade_run, solver, f"stress:{s:g}", t_end=10.0)
+    f = s * H * B
+    for r in rows:  # swelling 1 -> 10 days is tiny next to the load; the closed form keeps it
+        dxi = larive_xi(r["t"]) - larive_xi(1.0)
+        free = (N - 1) * D_INF * dxi
+        assert np.allclose(r["fn"], f, rtol=rel)
+        assert r["stress"] == pytest.approx(s, rel=rel)
+        assert r["disp"] == pytest.approx(f * SERIES + free, rel=rel)
+
+
+@pytest.mark.parametrize("text", ["clamped", "stress", "stress:abc", "stress:nan", "stress:inf", "spring:0", "spring:-1", "fixed:3", 5])
+def test_bad_boundary_named_with_its_value(text):
+    with pytest.raises(options.OptionError) as e:
+        Boundary.parse("boundary_x", text)
+    assert "boundary_x" in str(e.value) and str(text) in str(e.value) and "allowed" in str(e.value)
+
+
+def test_good_boundaries_parse():
+    assert Boundary.parse("b", "free") == Boundary("free")
+    assert Boundary.parse("b", "stress:-5e6") == Boundary("stress", -5e6)
+    assert Boundary.parse("b", "spring:2e9") == Boundary("spring", 2e9)
+    assert math.isclose(Boundary.parse("b", "stress:-1.5e7").value, -15e6)
