@@ -20,7 +20,8 @@ Decisions (docs/scenarios.md explains them):
 - 'elastic' runs use aging-elastic mortar and ITZ contacts, E(t) = 1/J(t + 0.01 d, t) of the same
   B3 q's (the paper: "included the development over time of mortar and ITZ modulus");
   aggregate contacts are linear elastic (modulus paper.AGGREGATE_YOUNG, an assumption: the paper gives none);
-- the specimen is free (no support); strains are the least-squares affine fit of all displacements.
+- the specimen is free (no support) unless boundary_x / boundary_y put platens on its sides
+  (swelldem.dem.platens); strains are the least-squares affine fit of the skeleton's displacements.
 
 Validation: SwellingTest.validate checks every field (NaN and infinity included) in Python, with
 the one message form of swelldem.options; prepare() then makes the plugin's objects, whose
@@ -81,6 +82,10 @@ class SwellingTest:
                                      "MORTAR.tensileStrength=5e6 [Pa]; contact values, applied last (after eps_inf, "
                                      "strength_scale and, in macro, the beta scaling of q's and young)",
                                flag="--kind-param", sets="ContactKind.<attribute>", factory=dict)
+    boundary_x: str = _field("free", "platens on the x sides: free, fixed (restrained), stress:S (applied stress S [Pa], compression "
+                                     "negative) or spring:K (partial restraint, K [N/m per metre of thickness]); "
+                                     "swelldem.dem.platens")
+    boundary_y: str = _field("free", "platens on the y sides, as boundary_x")
     vtk_every: int = _field(0, "ParaView files (DIR/vtk/) every k physical steps, and always of the last (0: only the last)")
     out: str = _field("out/swelling", "output folder")
 
@@ -122,6 +127,9 @@ class SwellingTest:
             options.number("aggregate_area_fraction", self.aggregate_area_fraction, lo=0, hi=1, lo_incl=True,
                            allowed="< 0 (the generator's default) or 0 <= aggregate_area_fraction < 1")
         options.integer("vtk_every", self.vtk_every, lo=0)
+        from .dem.platens import Boundary  # plain Python: the parse needs no YADE
+        for axis in ("x", "y"):
+            Boundary.parse(f"boundary_{axis}", getattr(self, f"boundary_{axis}"))
         # the mesostructure generator's own checks (a specimen too small for the sieve fractions, an
         # aggregate fraction it cannot place, ...), run here so that they too come before any work
         from .meso import MesoParameters
@@ -432,14 +440,17 @@ def run(test, prepared=None, extra_times=(), after_step=None):
     gel = []
     if test.scenario == "asr-coarse":
         gel = dem.set_gel_pockets(ys, assembly, test.gel_fraction, d_inf, test.seed)
+    from .dem.platens import Boundary, add_platens
+    platens = add_platens(assembly, ys, Boundary.parse("boundary_x", test.boundary_x), Boundary.parse("boundary_y", test.boundary_y))
     counts = {name: int((assembly.kind == k).sum()) for k, name in enumerate(paper.KIND_NAMES)}
     res = {"scenario": test.scenario, "behaviour": test.behaviour, "damage": test.damage, "solver": test.solver, "tolerance": solver.tolerance, "config": asdict(test),
            "calibration": cal, "d_inf_m": d_inf, "r_mean_m": r_mean, "n_particles": int(len(assembly.x)),
            "n_contacts_by_kind": counts, "n_gel_pockets": int(len(gel)), "times_days": [], "swelling_strain_x": [],
-           "swelling_strain_y": [], "unbalanced_ratio": [], "adr_iterations_per_step": [], "step_at_round_off": [], "adr_iterations": 0,
+           "swelling_strain_y": [], "swelling_strain_area": [], "platen_stress_x_Pa": [], "platen_stress_y_Pa": [],
+           "platen_disp_x_m": [], "platen_disp_y_m": [], "unbalanced_ratio": [], "adr_iterations_per_step": [], "step_at_round_off": [], "adr_iterations": 0,
            "per_kind": {n: {"fn_p05_kN": [], "fn_p95_kN": [], "broken": [], "born_broken": []} for n in paper.KIND_NAMES},
            "status": "running", "wall_s": 0.0, "yade_tags": batch_tags()}
-    rec = recorder.StepRecorder(assembly, ys, solver, res, test.out, vtk_every=test.vtk_every)
+    rec = recorder.StepRecorder(assembly, ys, solver, res, test.out, vtk_every=test.vtk_every, platens=platens)
     solver.stepHook = rec if after_step is None else (lambda: (rec(), after_step()))
     handlers = _catch_stop_signals()
     try:

@@ -10,11 +10,15 @@ S = (N - 1)/kn_c + 2/kn_p the contact force F is:
 - a spring K b:     the same elongation = -F / (K b)              -> F = -(N - 1) d / (S + 1/(K b));
 - applied stress s: F = s H b, and the platens' distance changes by F S (no swelling).
 Larive's xi is evaluated with numpy (swelldem.paper.larive_xi), not by the plugin."""
+import json
 import math
+import os
+import subprocess
 
 import numpy as np
 import pytest
 
+from conftest import LAUNCHER, REPO, build_dir
 from swelldem import options
 from swelldem.dem.platens import PLATEN_YOUNG, Boundary
 from swelldem.paper import larive_xi
@@ -114,3 +118,39 @@ def test_good_boundaries_parse():
     assert Boundary.parse("b", "stress:-5e6") == Boundary("stress", -5e6)
     assert Boundary.parse("b", "spring:2e9") == Boundary("spring", 2e9)
     assert math.isclose(Boundary.parse("b", "stress:-1.5e7").value, -15e6)
+
+
+SCRIPT = os.path.join(REPO, "scripts", "swelling_test.py")
+
+
+def test_swelling_test_with_platens_on_both_axes(tmp_path):
+    """x restrained, y under -5 MPa: every step in equilibrium with the applied stress, the x platens
+    do not move and carry compression, results.json has the contract's keys."""
+    out = tmp_path / "run"
+    proc = subprocess.run([LAUNCHER, "-j", "1", "-n", "-x", SCRIPT, "--scenario", "isr", "--behaviour", "elastic", "--size-mm", "16", "16",
+                           "--seed", "2", "--steps-per-decade", "2", "--boundary-x", "fixed", "--boundary-y", "stress:-5e6", "--out", str(out)],
+                          capture_output=True, text=True, timeout=900, env=dict(os.environ, SWELLDEM_BUILD_DIR=build_dir()))
+    assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
+    r = json.loads((out / "results.json").read_text())
+    assert r["status"] == "finished" and r["config"]["boundary_y"] == "stress:-5e6"
+    n = len(r["times_days"])
+    for key in ("swelling_strain_area", "platen_stress_x_Pa", "platen_stress_y_Pa", "platen_disp_x_m", "platen_disp_y_m"):
+        assert len(r[key]) == n, key
+    # the ADR's tolerance 1e-4 on the unbalanced ratio; measured 0.07 % at the first step (loaded at once)
+    assert np.allclose(r["platen_stress_y_Pa"], -5e6, rtol=5e-3)
+    assert np.all(np.abs(r["platen_disp_x_m"]) == 0.0)
+    assert r["platen_stress_x_Pa"][-1] < -1e5  # the restrained swelling pushes on the x platens
+    assert r["platen_disp_y_m"][0] < 0  # the load shortens the specimen first
+    # area strain against the strains along the axes: (1 + ex)(1 + ey) - 1 up to the shear term
+    ex, ey, area = (np.array(r[k]) for k in ("swelling_strain_x", "swelling_strain_y", "swelling_strain_area"))
+    assert np.allclose(area, (1 + ex) * (1 + ey) - 1, atol=1e-6)
+
+
+@pytest.mark.parametrize("value", ["clamped", "stress:-inf", "spring:0"])
+def test_swelling_test_refuses_a_bad_boundary_before_any_work(tmp_path, value):
+    out = tmp_path / "run"
+    proc = subprocess.run([LAUNCHER, "-j", "1", "-n", "-x", SCRIPT, "--boundary-x", value, "--out", str(out)],
+                          capture_output=True, text=True, timeout=300, env=dict(os.environ, SWELLDEM_BUILD_DIR=build_dir()))
+    assert proc.returncode == 2
+    assert f"boundary_x = {value!r} is out of range; allowed:" in proc.stdout + proc.stderr
+    assert not out.exists()  # nothing written: refused before the mesostructure

@@ -8,12 +8,15 @@ ForceEngine) or held by a spring (the solver's springBodies), and moves along it
 fixed low platen and a loaded high one are what a press or a restraining frame does, and they
 leave no rigid-body mode in the loaded direction.
 
-The discs whose edge lies within `gap` of a platen get a contact with it at the set-up: intact
-contacts of the PLATEN kind (elastic, stress-free as created, never breaking), made through the
-one contact path (Ip2_ConcreteMat_ConcreteMat_SwellPhys with its `platen` kind, the same law).
-Their stiffness is kn = E_platen A / L with the Ip2's fallback facet A = 2 r b and L = 2 r, so
-kn = E_platen b per contact; their shear ratio is small (PLATEN_SHEAR_RATIO): lubricated
-platens, which restrain the specimen along their axis and barely across it. Discs that reach a
+A generated specimen's sides are rough (the top of a packing most: its outermost discs stand up
+to a radius out). The discs that face a platen (facing_discs: within 1.5 Rmax of the outermost
+edge and not hidden behind another disc) get a contact with it at the set-up, whatever their gap,
+as a capping layer would bond them: intact contacts of the PLATEN kind (elastic, stress-free as
+created, never breaking), made through the one contact path (Ip2_ConcreteMat_ConcreteMat_SwellPhys
+with its `platen` kind, the same law). Their stiffness is kn = E_platen A / L with the Ip2's
+fallback facet A = 2 r b and L = 2 r + gap, about E_platen b per contact; their shear ratio is
+tiny (PLATEN_SHEAR_RATIO): lubricated platens, which restrain the specimen along their axis only
+(a ratio of 1e-3 was measured to carry 10 % of a -5 MPa load on the other axis's platens). Discs that reach a
 platen later get a cohesionless (compression-only) contact from the collider, like every contact
 made during a run.
 
@@ -34,7 +37,7 @@ PLATEN = "PLATEN"
 #: Contact modulus of platen contacts [Pa]: steel.
 PLATEN_YOUNG = 200e9
 #: ks / kn of platen contacts [-]: lubricated platens (nearly frictionless, but not a mechanism).
-PLATEN_SHEAR_RATIO = 1e-3
+PLATEN_SHEAR_RATIO = 1e-6
 BOUNDARY_TYPES = ("free", "fixed", "stress", "spring")
 AXES = ("x", "y")
 
@@ -111,12 +114,28 @@ class Platens:
         return float(O.bodies[hi].state.pos[k] - O.bodies[lo].state.pos[k] - self.start[axis])
 
 
+def facing_discs(depth, across, r, band):
+    """Indices of the discs that face a platen: within `band` [m] of the outermost disc edge along
+    the platen's normal, and not hidden from it by another disc (no disc closer to the platen
+    covers the line from the disc's centre to it). depth: disc centres along the outward normal
+    [m]; across: centres along the platen [m]; r: radii [m]."""
+    edge = depth + r
+    cand = np.flatnonzero(edge > edge.max() - band)
+    out = []
+    for i in cand:
+        hiding = (depth > depth[i]) & (np.abs(across - across[i]) < r)
+        hiding[i] = False
+        if not hiding.any():
+            out.append(int(i))
+    return np.array(out, dtype=np.int64)
+
+
 def add_platens(assembly, yscene, boundary_x=Boundary(), boundary_y=Boundary(), young=PLATEN_YOUNG,
-                shear_ratio=PLATEN_SHEAR_RATIO, gap=None):
+                shear_ratio=PLATEN_SHEAR_RATIO, band=None):
     """Adds the platens of the non-free axes to the scene made by swelldem.dem.to_yade (before
     the run starts); returns a :class:`Platens`, or None when both axes are free.
-    gap [m]: discs whose edge is within it of a platen are in contact with it (default 0.05 Rmax,
-    the mesostructure's own largest contact gap)."""
+    band [m]: the discs facing a platen within this depth of the outermost disc edge get a contact
+    with it (default 1.5 Rmax; facing_discs)."""
     boundaries = {"x": boundary_x, "y": boundary_y}
     for a, b in boundaries.items():
         if not isinstance(b, Boundary) or b.type not in BOUNDARY_TYPES:
@@ -135,7 +154,7 @@ def add_platens(assembly, yscene, boundary_x=Boundary(), boundary_y=Boundary(), 
             e.geomDispatcher.functors = list(e.geomDispatcher.functors) + [W.Ig2_Wall_Sphere_ScGeom()]
         elif getattr(e, "label", "") == "collider":
             e.boundDispatcher.functors = list(e.boundDispatcher.functors) + [W.Bo1_Wall_Aabb()]
-    gap = 0.05 * float(assembly.r.max()) if gap is None else gap
+    band = 1.5 * float(assembly.r.max()) if band is None else band
     thickness = float(assembly.thickness_m)
     centre = {"x": assembly.x, "y": assembly.y}
     side = {"x": assembly.height_m, "y": assembly.width_m}  # the platen's nominal length
@@ -158,7 +177,7 @@ def add_platens(assembly, yscene, boundary_x=Boundary(), boundary_y=Boundary(), 
                 body.state.blockedDOFs = ("yzXYZ" if a == "x" else "xzXYZ") if moves else "xyzXYZ"
                 wid = O.bodies.append(body)
                 ids.append(wid)
-                near = np.flatnonzero((c - assembly.r - lo_edge < gap) if sense > 0 else (hi_edge - c - assembly.r < gap))
+                near = facing_discs(c if sense < 0 else -c, centre[AXES[1 - k]], assembly.r, band)
                 for i in near:
                     I = yade.utils.createInteraction(wid, int(yscene.ids[i]))
                     if I is None or not I.isReal:

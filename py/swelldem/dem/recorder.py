@@ -56,7 +56,8 @@ def broken_contacts(bonded=None):
 
 class StepRecorder:
     """Per converged physical step, appends to the results dict `res`: time [day], the swelling
-    strains (affine fit of the skeleton's displacements), the unbalanced-force ratio, the step's
+    strains (affine fit of the skeleton's displacements: x, y and area), the platens' stress [Pa] and
+    displacement [m] per axis (0 without platens), the unbalanced-force ratio, the step's
     iterations and round-off flag, and per contact kind the 5 % / 95 % normal-force quantiles
     [kN], the broken contacts (bonded at the start, broken since) and the contacts made during
     the run (born broken, 'born_broken', present at the step); then rewrites results.json in `out`
@@ -65,8 +66,9 @@ class StepRecorder:
     index into times_days). Made before the run starts: it takes the bonded contacts from O then,
     and replaces the VTK series of an earlier run in out/vtk/."""
 
-    def __init__(self, assembly, yscene, solver, res, out, vtk_every=0):
+    def __init__(self, assembly, yscene, solver, res, out, vtk_every=0, platens=None):
         self.a, self.ys, self.solver, self.res, self.out, self.vtk_every = assembly, yscene, solver, res, out, vtk_every
+        self.platens = platens
         self.ref = np.column_stack([assembly.x, assembly.y])
         # Strain of the load-bearing skeleton: discs with fewer than 2 contacts (held by the
         # specimen's sides during packing) are loose in a free specimen and do not follow it.
@@ -82,6 +84,11 @@ class StepRecorder:
         r["times_days"].append(solver.physTime)
         r["swelling_strain_x"].append(s["eps_xx"])
         r["swelling_strain_y"].append(s["eps_yy"])
+        # the area change of the affine fit, det(I + grad u) - 1 (exact, not the small-strain e_xx + e_yy)
+        r["swelling_strain_area"].append(float(np.linalg.det(np.eye(2) + np.asarray(s["gradient"]))) - 1)
+        for axis in ("x", "y"):
+            r[f"platen_stress_{axis}_Pa"].append(self.platens.stress(axis) if self.platens else 0.0)
+            r[f"platen_disp_{axis}_m"].append(self.platens.displacement(axis) if self.platens else 0.0)
         r["unbalanced_ratio"].append(solver.unbalanced)
         r["adr_iterations_per_step"].append(int(solver.stepIterations[-1]))
         round_off = getattr(solver, "stepRoundOff", None)  # a solver without a round-off stop has none

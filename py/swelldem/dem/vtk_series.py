@@ -18,6 +18,7 @@ centres of all bodies, point data id); cell data:
   broken [-] 0/1; failureMode [-] 0 intact, 1 tension, 2 shear; bonded [-] 1 for a contact bonded at
   the start of the run, 0 for one made during it; crackOpening [m] of a broken contact, FnHat / kn
   (the normal opening beyond its stress-free state; 0 when closed or intact).
+Platens (swelldem.dem.platens) and their contacts are left out; their stress is in results.json.
 Field data of both: TimeValue [day], step [-] (index into results.json's times_days) and the kind
 name table kindId_MORTAR = 0, kindId_ITZ = 1, kindId_AGG = 2 (VTK's ASCII XML has no portable
 string array, and ParaView colours by integer arrays, e.g. with "Interpret Values As Categories").
@@ -98,7 +99,7 @@ def particle_cells(sides=DISC_SIDES):
     ring = [(math.cos(2 * math.pi * k / sides), math.sin(2 * math.pi * k / sides)) for k in range(sides)]
     points, ids, radius, agg, displ = [], [], [], [], []
     for b in O.bodies:
-        if b is None:
+        if b is None or not _is_disc(b):
             continue
         x, y, r = float(b.state.pos[0]), float(b.state.pos[1]), float(b.shape.radius)
         points += [(x + r * c, y + r * s, 0.0) for c, s in ring]
@@ -114,6 +115,11 @@ def particle_cells(sides=DISC_SIDES):
     return points, connectivity, offsets, cells
 
 
+def _is_disc(body):
+    """Discs only: platens (Wall bodies, swelldem.dem.platens) have no radius and no place in these files."""
+    return hasattr(body.shape, "radius")
+
+
 def contact_cells(bonded=None):
     """Points (all disc centres), connectivity, offsets, cell data and point data of the real
     interactions of O as lines; bonded: the (id1, id2) pairs (id1 < id2) bonded at the start
@@ -122,7 +128,7 @@ def contact_cells(bonded=None):
     O = yade.Omega()
     index, points, pid = {}, [], []
     for b in O.bodies:
-        if b is None:
+        if b is None or not _is_disc(b):
             continue
         index[b.id] = len(points)
         points.append((float(b.state.pos[0]), float(b.state.pos[1]), 0.0))
@@ -130,7 +136,7 @@ def contact_cells(bonded=None):
     conn, cols = [], {k: [] for k in ("kindId", "Fn", "Fs", "area", "strength", "FnOverStrength", "broken", "failureMode",
                                       "bonded", "crackOpening")}
     for i in O.interactions:
-        if not i.isReal:
+        if not i.isReal or i.id1 not in index or i.id2 not in index:  # platen contacts: results.json has their stress
             continue
         p = i.phys
         conn += [index[i.id1], index[i.id2]]
