@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 """Swelling under applied stress and restraint (docs/boundaries.md): ISR and ASR-fine specimens,
-elastic and viscoelastic, damage on, free, uniaxially loaded along x (-5, -10 MPa) and restrained
+elastic and viscoelastic, damage on, free, uniaxially loaded along x (-2.5, -5 MPa) and restrained
 along x (fixed platens), y free. Writes DIR/boundary_study.csv, .md and boundary_strains.png
 (strain along x, across (y) and area strain against time), restrained_stress.png (platen stress
 of the restrained specimens against a hand estimate from the restrained single contact), and
@@ -27,7 +27,10 @@ import numpy as np
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(sys.argv[0]))), "py"))
 from swelldem import options, paper, scenario  # noqa: E402
 
-CASES = (("free", "free"), ("-5 MPa", "stress:-5e6"), ("-10 MPa", "stress:-10e6"), ("restrained", "fixed"))
+# Loads as fractions of the model's own uniaxial compressive strength, about 7.6 MPa with the
+# paper's strengths (tension cut-off, no shear failure; docs/cohesive-laws.md): -10 MPa is beyond
+# it, and such a specimen fails under the load (the solver stops: no equilibrium).
+CASES = (("free", "free"), ("-2.5 MPa", "stress:-2.5e6"), ("-5 MPa", "stress:-5e6"), ("restrained", "fixed"))
 SCENARIOS = ("isr", "asr-fine")
 BEHAVIOURS = ("elastic", "viscoelastic")
 BETA = 0.499  # docs/residual-properties.md: calibrate_modulus_factor of the mortar packing
@@ -103,7 +106,11 @@ def run(a):
             results[k] = json.load(open(path))
             continue
         print(f"boundary_study: {k}", flush=True)
-        results[k] = scenario.run(t)
+        try:
+            results[k] = scenario.run(t)
+        except Exception as e:  # noqa: BLE001 - a run that fails is reported, the others go on
+            print(f"boundary_study: {k} failed: {e}", flush=True)
+            results[k] = json.load(open(path))
     single = {(sc, beh): single_contact_stress(tests[sc, beh, "restrained, no damage"]) for sc in SCENARIOS for beh in BEHAVIOURS}
     write(a.out, results, single)
 
@@ -114,7 +121,9 @@ def write(out, results, single):
     import matplotlib.pyplot as plt
     rows = []
     for (sc, beh, label), r in results.items():
-        rows.append({"scenario": sc, "behaviour": beh, "boundary_x": label,
+        if not r["times_days"]:
+            continue
+        rows.append({"scenario": sc, "behaviour": beh, "boundary_x": label, "status": r["status"].split(":")[0],
                      "strain_x_1e-6": 1e6 * r["swelling_strain_x"][-1], "strain_y_1e-6": 1e6 * r["swelling_strain_y"][-1],
                      "strain_area_1e-6": 1e6 * r["swelling_strain_area"][-1], "platen_stress_x_MPa": r["platen_stress_x_Pa"][-1] / 1e6,
                      "broken_MORTAR": r["per_kind"]["MORTAR"]["broken"][-1], "broken_ITZ": r["per_kind"]["ITZ"]["broken"][-1],
@@ -123,10 +132,10 @@ def write(out, results, single):
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)
-    lines = ["| scenario | behaviour | x boundary | strain x [1e-6] | strain y [1e-6] | area strain [1e-6] | platen stress x [MPa] | broken M / I / A |",
-             "|---|---|---|---|---|---|---|---|"]
+    lines = ["| scenario | behaviour | x boundary | run | strain x [1e-6] | strain y [1e-6] | area strain [1e-6] | platen stress x [MPa] | broken M / I / A |",
+             "|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
-        lines.append(f"| {r['scenario']} | {r['behaviour']} | {r['boundary_x']} | {r['strain_x_1e-6']:.0f} | {r['strain_y_1e-6']:.0f} | "
+        lines.append(f"| {r['scenario']} | {r['behaviour']} | {r['boundary_x']} | {r['status']} | {r['strain_x_1e-6']:.0f} | {r['strain_y_1e-6']:.0f} | "
                      f"{r['strain_area_1e-6']:.0f} | {r['platen_stress_x_MPa']:.2f} | {r['broken_MORTAR']} / {r['broken_ITZ']} / {r['broken_AGG']} |")
     with open(os.path.join(out, "boundary_study.md"), "w") as f:
         f.write("Final values (last step) of the boundary study; strains of the skeleton's affine fit, compression negative.\n\n"
@@ -134,12 +143,14 @@ def write(out, results, single):
 
     fig, axes = plt.subplots(len(SCENARIOS) * len(BEHAVIOURS), 3, figsize=(13, 3.2 * len(SCENARIOS) * len(BEHAVIOURS)), squeeze=False)
     colors = dict(zip([c[0] for c in CASES], ("k", "tab:blue", "tab:purple", "tab:red")))
+    failed = {k: r["status"] for k, r in results.items() if r.get("status") != "finished"}
     for i, (sc, beh) in enumerate((s, b) for s in SCENARIOS for b in BEHAVIOURS):
         for label, _ in CASES:
             r = results[sc, beh, label]
             t = np.array(r["times_days"])
             for j, key in enumerate(("swelling_strain_x", "swelling_strain_y", "swelling_strain_area")):
-                axes[i, j].semilogx(t, 1e6 * np.array(r[key]), color=colors[label], label=label)
+                axes[i, j].semilogx(t, 1e6 * np.array(r[key]), color=colors[label],
+                                    label=label + (" (stopped)" if (sc, beh, label) in failed else ""))
         for j, what in enumerate(("along x (loaded)", "across (y, free)", "area (volumetric)")):
             ax = axes[i, j]
             ax.set(title=f"{sc}, {beh}: strain {what}", xlabel="time [day]", ylabel="strain [1e-6]")

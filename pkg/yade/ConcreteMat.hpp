@@ -12,9 +12,11 @@ public:
 #define SWELLDEM_CONCRETE_MAT_ATTRS(X)                                                                                                                         \
 	X(int, aggregateId, -1, swelldem_attr::Setting, "Aggregate this material belongs to: -1 for mortar, >= 0 for the particles of one coarse aggregate [-]") \
 	X(bool, platen, false, swelldem_attr::Setting,                                                                                                        \
-	  "A loading platen (a Wall body): its contacts are of the Ip2's platen kind (PLATEN), whatever the other material; aggregateId is then unused [-]")
+	  "A loading platen (a Wall body): its contacts are of the Ip2's platen kind (PLATEN), whatever the other material; aggregateId is then unused [-]") \
+	X(bool, steel, false, swelldem_attr::Setting,                                                                                                         \
+	  "Reinforcing steel (the discs of a bar): steel-steel contacts are of the Ip2's steel kind (STEEL), steel-concrete ones of its bond kind (BOND) [-]")
 	SWELLDEM_CLASS(ConcreteMat, FrictMat,
-	               "Concrete component (mortar or one coarse aggregate) of a swelldem mesostructure, or a loading platen. Contact parameters are "
+	               "Concrete component (mortar or one coarse aggregate) of a swelldem mesostructure, a reinforcing bar's steel or a loading platen. Contact parameters are "
 	               "not here but in the ContactKind objects of Ip2_ConcreteMat_ConcreteMat_SwellPhys (MORTAR, ITZ, AGG).",
 	               SWELLDEM_CONCRETE_MAT_ATTRS)
 	ConcreteMat() { createIndex(); }

@@ -23,7 +23,7 @@ class ContactKind : public Serializable {
 public:
 #define SWELLDEM_CONTACT_KIND_ATTRS(X)                                                                                                                         \
 	X(string, name, "MORTAR", swelldem_attr::Setting, "Name of the kind (MORTAR, ITZ, AGG or any label) [-]")                                            \
-	X(int, kindId, 0, swelldem_attr::Setting, "Index of the kind, reported per contact in SwellPhys.kindId (0 MORTAR, 1 ITZ, 2 AGG by convention) [-]") \
+	X(int, kindId, 0, swelldem_attr::Setting, "Index of the kind, reported per contact in SwellPhys.kindId (by convention 0 MORTAR, 1 ITZ, 2 AGG, 3 PLATEN, 4 STEEL, 5 BOND: swelldem.paper) [-]") \
 	X(string, behaviour, "elastic", swelldem_attr::Setting,                                                                                              \
 	  "'elastic' (constant modulus young), 'aging-elastic' (E(t) = 1/J(t + 0.01 d, t) of the B3 q's, incremental) "                                    \
 	  "or 'viscoelastic' (aging, B3 solidification theory with a Kelvin chain) [-]")                                                                   \

@@ -12,14 +12,18 @@ void Ip2_ConcreteMat_ConcreteMat_SwellPhys::go(const shared_ptr<Material>& m1, c
 	if (I->phys) return;
 	const auto* a = static_cast<const ConcreteMat*>(m1.get());
 	const auto* b = static_cast<const ConcreteMat*>(m2.get());
-	const bool  withPlaten = a->platen || b->platen;
-	const bool  mortar = !withPlaten && a->isMortar() && b->isMortar(), sameAggregate = !withPlaten && !mortar && a->aggregateId == b->aggregateId;
-	const shared_ptr<ContactKind>& kind = withPlaten ? platen : (mortar ? this->mortar : (sameAggregate ? agg : itz));
+	// Platens first (a bar's end may touch one), then steel, then the concrete's own kinds.
+	const bool  withPlaten = a->platen || b->platen, bothSteel = !withPlaten && a->steel && b->steel;
+	const bool  withSteel = !withPlaten && !bothSteel && (a->steel || b->steel), concrete = !withPlaten && !bothSteel && !withSteel;
+	const bool  mortar = concrete && a->isMortar() && b->isMortar(), sameAggregate = concrete && !mortar && a->aggregateId == b->aggregateId;
+	const shared_ptr<ContactKind>& kind
+	        = withPlaten ? platen : (bothSteel ? steel : (withSteel ? bond : (mortar ? this->mortar : (sameAggregate ? agg : itz))));
+	const char* which = withPlaten ? "platen" : (bothSteel ? "steel" : (withSteel ? "bond" : (mortar ? "mortar" : (sameAggregate ? "agg" : "itz"))));
 	const auto*                    geom = dynamic_cast<const ScGeom*>(I->geom.get());
 	// An Ip2 may not throw (YADE calls it inside its parallel loops): a contact it cannot make is
 	// left without physics and the log-time solvers raise the error after the loop.
 	if (!kind || !geom) {
-		recordFunctorError(!kind ? string("Ip2_ConcreteMat_ConcreteMat_SwellPhys.") + (withPlaten ? "platen" : (mortar ? "mortar" : (sameAggregate ? "agg" : "itz")))
+		recordFunctorError(!kind ? string("Ip2_ConcreteMat_ConcreteMat_SwellPhys.") + which
 		                                   + " is not set (contact of bodies " + std::to_string(I->id1) + " and " + std::to_string(I->id2)
 		                                   + "); allowed: a ContactKind"
 		                         : string("Ip2_ConcreteMat_ConcreteMat_SwellPhys: the contact geometry must be ScGeom (Ig2_Sphere_Sphere_ScGeom)"));

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // Creates SwellPhys for contacts between ConcreteMat particles and assigns the contact kind:
 // mortar-mortar MORTAR; mortar-aggregate or two different aggregates ITZ; one aggregate AGG; with a
-// platen (a Wall of a ConcreteMat with platen set) PLATEN.
+// platen (a Wall of a ConcreteMat with platen set) PLATEN; two steel discs STEEL; steel and concrete BOND.
 #pragma once
 #include "ConcreteMat.hpp"
 #include "SwellPhys.hpp"
@@ -15,6 +15,8 @@ public:
 	X(shared_ptr<ContactKind>, itz, shared_ptr<ContactKind>(), swelldem_attr::Setting, "Kind of mortar-aggregate and aggregate-aggregate contacts (ITZ) [-]")                   \
 	X(shared_ptr<ContactKind>, agg, shared_ptr<ContactKind>(), swelldem_attr::Setting, "Kind of contacts inside one aggregate (AGG) [-]")                                       \
 	X(shared_ptr<ContactKind>, platen, shared_ptr<ContactKind>(), swelldem_attr::Setting, "Kind of contacts with a platen (ConcreteMat.platen; PLATEN) [-]")                  \
+	X(shared_ptr<ContactKind>, steel, shared_ptr<ContactKind>(), swelldem_attr::Setting, "Kind of contacts between two steel discs of a bar (ConcreteMat.steel; STEEL) [-]")    \
+	X(shared_ptr<ContactKind>, bond, shared_ptr<ContactKind>(), swelldem_attr::Setting, "Kind of contacts between steel and concrete (BOND) [-]")                             \
 	X(Real, thickness, 1.0, swelldem_attr::Setting, "Out-of-plane thickness b of the 2D model; fallback facet area 2 min(r1, r2) b when no Laguerre facet is given [m]")      \
 	X(bool, cohesive, true, swelldem_attr::Setting, "Contacts created while true are intact (bonded) and stress-free as created; while false they are born broken "   \
 	                             "(compression and friction only) and stress-free when the discs just touch [-]")

@@ -44,7 +44,7 @@ class SwellPhys : public FrictPhys {
 public:
 #define SWELLDEM_SWELL_PHYS_ATTRS(X)                                                                                                                           \
 	X(shared_ptr<ContactKind>, kind, shared_ptr<ContactKind>(), swelldem_attr::Setting, "Kind of the contact (shared parameters) [-]")                   \
-	X(int, kindId, 0, swelldem_attr::Result, "kind.kindId when the contact was made (0 MORTAR, 1 ITZ, 2 AGG by convention) [-]")                        \
+	X(int, kindId, 0, swelldem_attr::Result, "kind.kindId when the contact was made (see ContactKind.kindId) [-]")                        \
 	X(Real, area, 0.0, swelldem_attr::Setting, "Contact facet area A_c (Laguerre facet length x thickness b) [m2]")                                     \
 	X(Real, length, 0.0, swelldem_attr::Setting, "Centre distance L of the stress-free configuration; kn = E A / L [m]")                                 \
 	X(Real, swellDispInf, -1.0, swelldem_attr::Setting,                                                                                                  \

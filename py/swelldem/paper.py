@@ -12,6 +12,9 @@ import numpy as np
 MORTAR, ITZ, AGG = 0, 1, 2
 KIND_NAMES = ("MORTAR", "ITZ", "AGG")
 KIND_IDS = {name: k for k, name in enumerate(KIND_NAMES)}
+#: Kinds swelldem adds for the conditions of structures (not the paper's): platens
+#: (swelldem.dem.platens), reinforcing steel and its bond to the concrete (swelldem.dem.rebar).
+STRUCTURE_KIND_IDS = {"PLATEN": 3, "STEEL": 4, "BOND": 5}
 
 #: Table 3.3: B3 basic-creep coefficients (q1, q2, q3, q4) [1e-6/MPa = 1e-12/Pa] of each material.
 B3_Q = {"mortar": (6.7, 108.1, 44.2, 14.3), "concrete": (9.0, 23.7, 46.6, 5.1), "itz": (19.3, 194.6, 72.9, 7.5)}

@@ -86,6 +86,12 @@ class SwellingTest:
                                      "negative) or spring:K (partial restraint, K [N/m per metre of thickness]); "
                                      "swelldem.dem.platens")
     boundary_y: str = _field("free", "platens on the y sides, as boundary_x")
+    rebar_ratio: float = _field(0.0, "reinforcement ratio: steel area over the specimen's cross-section, in one bar along x at "
+                                     "mid-height, or in rebar_bars evenly spaced bars (0: none; swelldem.dem.rebar)", unit="-")
+    rebar_bars: int = _field(1, "number of bars along x, evenly spaced across the height")
+    rebar_young: float = _field(200e9, "steel modulus of the bars", unit="Pa")
+    rebar_yield_stress: float = _field(500e6, "steel yield stress: the bars stay elastic, the first day they reach it is "
+                                              "reported (results.json rebar.yield_day)", unit="Pa")
     vtk_every: int = _field(0, "ParaView files (DIR/vtk/) every k physical steps, and always of the last (0: only the last)")
     out: str = _field("out/swelling", "output folder")
 
@@ -130,6 +136,11 @@ class SwellingTest:
         from .dem.platens import Boundary  # plain Python: the parse needs no YADE
         for axis in ("x", "y"):
             Boundary.parse(f"boundary_{axis}", getattr(self, f"boundary_{axis}"))
+        from .dem.rebar import MAX_RATIO
+        options.number("rebar_ratio", self.rebar_ratio, lo=0, hi=MAX_RATIO, lo_incl=True, hi_incl=True)
+        options.integer("rebar_bars", self.rebar_bars, lo=1)
+        options.number("rebar_young", self.rebar_young, lo=0, unit="Pa")
+        options.number("rebar_yield_stress", self.rebar_yield_stress, lo=0, unit="Pa")
         # the mesostructure generator's own checks (a specimen too small for the sieve fractions, an
         # aggregate fraction it cannot place, ...), run here so that they too come before any work
         from .meso import MesoParameters
@@ -421,6 +432,12 @@ def run(test, prepared=None, extra_times=(), after_step=None):
     overrides = {} if test.aggregate_area_fraction < 0 else {"aggregate_area_fraction": test.aggregate_area_fraction}
     print(f"swelldem: set-up: mesostructure {test.size_mm[0]:g} x {test.size_mm[1]:g} mm, seed {test.seed}", flush=True)
     assembly = meso.generate(seed=test.seed, width_mm=test.size_mm[0], height_mm=test.size_mm[1], **overrides)
+    lay = None
+    if test.rebar_ratio > 0:
+        from .dem import rebar
+        lay = rebar.layout(assembly, test.rebar_ratio, n_bars=test.rebar_bars, young=test.rebar_young,
+                           yield_stress=test.rebar_yield_stress)
+        assembly = rebar.carve(assembly, lay)  # the discs the bar replaces
     assembly.save(os.path.join(test.out, "assembly.npz"))
     if test.parameters == "macro":
         print("swelldem: set-up: calibrating the contact moduli (parameters = macro)", flush=True)
@@ -440,6 +457,10 @@ def run(test, prepared=None, extra_times=(), after_step=None):
     gel = []
     if test.scenario == "asr-coarse":
         gel = dem.set_gel_pockets(ys, assembly, test.gel_fraction, d_inf, test.seed)
+    bars = None
+    if lay is not None:
+        from .dem import rebar
+        bars = rebar.add_bars(assembly, ys, lay, kinds["ITZ"])
     from .dem.platens import Boundary, add_platens
     platens = add_platens(assembly, ys, Boundary.parse("boundary_x", test.boundary_x), Boundary.parse("boundary_y", test.boundary_y))
     counts = {name: int((assembly.kind == k).sum()) for k, name in enumerate(paper.KIND_NAMES)}
@@ -450,7 +471,12 @@ def run(test, prepared=None, extra_times=(), after_step=None):
            "platen_disp_x_m": [], "platen_disp_y_m": [], "unbalanced_ratio": [], "adr_iterations_per_step": [], "step_at_round_off": [], "adr_iterations": 0,
            "per_kind": {n: {"fn_p05_kN": [], "fn_p95_kN": [], "broken": [], "born_broken": []} for n in paper.KIND_NAMES},
            "status": "running", "wall_s": 0.0, "yade_tags": batch_tags()}
-    rec = recorder.StepRecorder(assembly, ys, solver, res, test.out, vtk_every=test.vtk_every, platens=platens)
+    if bars is not None:
+        res["rebar"] = {"ratio": lay.ratio, "n_bars": lay.n_bars, "y_m": list(lay.y_m), "thickness_m": lay.thickness_m,
+                        "disc_radius_m": lay.radius_m, "young_Pa": lay.young, "yield_stress_Pa": lay.yield_stress, "yield_day": None,
+                        "n_bond_contacts": bars.n_bond}
+        res["rebar_stress_max_Pa"], res["rebar_stress_mean_Pa"] = [], []
+    rec = recorder.StepRecorder(assembly, ys, solver, res, test.out, vtk_every=test.vtk_every, platens=platens, bars=bars)
     solver.stepHook = rec if after_step is None else (lambda: (rec(), after_step()))
     handlers = _catch_stop_signals()
     try:

@@ -32,7 +32,7 @@ import numpy as np
 from .. import options
 from . import scene as sc
 
-#: Name of the platens' contact kind (kindId 3: not one of the paper's kinds).
+#: Name of the platens' contact kind (swelldem.paper.STRUCTURE_KIND_IDS).
 PLATEN = "PLATEN"
 #: Contact modulus of platen contacts [Pa]: steel.
 PLATEN_YOUNG = 200e9

@@ -57,7 +57,7 @@ def broken_contacts(bonded=None):
 class StepRecorder:
     """Per converged physical step, appends to the results dict `res`: time [day], the swelling
     strains (affine fit of the skeleton's displacements: x, y and area), the platens' stress [Pa] and
-    displacement [m] per axis (0 without platens), the unbalanced-force ratio, the step's
+    displacement [m] per axis (0 without platens), the largest and the mean bar stress [Pa] (with bars), the unbalanced-force ratio, the step's
     iterations and round-off flag, and per contact kind the 5 % / 95 % normal-force quantiles
     [kN], the broken contacts (bonded at the start, broken since) and the contacts made during
     the run (born broken, 'born_broken', present at the step); then rewrites results.json in `out`
@@ -66,9 +66,9 @@ class StepRecorder:
     index into times_days). Made before the run starts: it takes the bonded contacts from O then,
     and replaces the VTK series of an earlier run in out/vtk/."""
 
-    def __init__(self, assembly, yscene, solver, res, out, vtk_every=0, platens=None):
+    def __init__(self, assembly, yscene, solver, res, out, vtk_every=0, platens=None, bars=None):
         self.a, self.ys, self.solver, self.res, self.out, self.vtk_every = assembly, yscene, solver, res, out, vtk_every
-        self.platens = platens
+        self.platens, self.bars = platens, bars
         self.ref = np.column_stack([assembly.x, assembly.y])
         # Strain of the load-bearing skeleton: discs with fewer than 2 contacts (held by the
         # specimen's sides during packing) are loose in a free specimen and do not follow it.
@@ -89,6 +89,11 @@ class StepRecorder:
         for axis in ("x", "y"):
             r[f"platen_stress_{axis}_Pa"].append(self.platens.stress(axis) if self.platens else 0.0)
             r[f"platen_disp_{axis}_m"].append(self.platens.displacement(axis) if self.platens else 0.0)
+        if self.bars is not None:
+            smax, smean = self.bars.record(solver.physTime)
+            r["rebar_stress_max_Pa"].append(smax)
+            r["rebar_stress_mean_Pa"].append(smean)
+            r["rebar"]["yield_day"] = self.bars.yield_day
         r["unbalanced_ratio"].append(solver.unbalanced)
         r["adr_iterations_per_step"].append(int(solver.stepIterations[-1]))
         round_off = getattr(solver, "stepRoundOff", None)  # a solver without a round-off stop has none

@@ -32,7 +32,7 @@ def _plain(value):
 
 def contact_kind(name, behaviour="elastic", young=30e9, b3="mortar", shear_ratio=0.3, swell_disp_inf=0.0, kinetics="isr",
                  damage=False, tensile_strength=4e6, **extra):
-    """A ContactKind named `name` (kindId from swelldem.paper.KIND_IDS, 3 for other names) with the
+    """A ContactKind named `name` (kindId from swelldem.paper.KIND_IDS or STRUCTURE_KIND_IDS, 6 for other names) with the
     paper's B3 q's of `b3` (a paper.B3_Q key) and the kinetics of `kinetics` (a paper.KINETICS key).
     Units: young [Pa], swell_disp_inf [m], tensile_strength [Pa]. `extra` are further ContactKind
     attributes by their plugin names (e.g. residualFrictionAngle, swelling, tensileStrength); they
@@ -53,7 +53,7 @@ def contact_kind(name, behaviour="elastic", young=30e9, b3="mortar", shear_ratio
     q1, q2, q3, q4 = (q * 1e-12 for q in paper.B3_Q[b3])
     tau_c, tau_l, _ = paper.KINETICS[kinetics]
     swelling = bool(extra.pop("swelling", False)) or swell_disp_inf > 0  # a kind may swell through per-contact overrides only
-    kw = dict(name=name, kindId=paper.KIND_IDS.get(name, 3), behaviour=behaviour, young=young, shearRatio=shear_ratio,
+    kw = dict(name=name, kindId={**paper.KIND_IDS, **paper.STRUCTURE_KIND_IDS}.get(name, 6), behaviour=behaviour, young=young, shearRatio=shear_ratio,
               q1=q1, q2=q2, q3=q3, q4=q4, swelling=swelling, swellDispInf=swell_disp_inf, tauC=tau_c, tauL=tau_l,
               damage=damage, tensileStrength=tensile_strength)
     kw.update(extra)  # named attributes have the last word (the per-kind overrides of a scenario)

@@ -116,6 +116,29 @@ class Assembly:
         """Number of contacts of every particle (int, n)."""
         return np.bincount(self.contacts.ravel(), minlength=self.n_particles)
 
+    def without(self, particles):
+        """A copy without the given particle indices (and their contacts and neighbours), the others
+        renumbered in order: room for an inclusion the generator does not place, e.g. a
+        reinforcing bar (swelldem.dem.rebar). Aggregate polygons are kept as they are."""
+        drop = np.zeros(self.n_particles, dtype=bool)
+        drop[np.asarray(particles, dtype=np.int64)] = True
+        keep = np.flatnonzero(~drop)
+        new_index = np.full(self.n_particles, -1, dtype=np.int64)
+        new_index[keep] = np.arange(keep.size)
+        per_particle = {k: getattr(self, k)[keep] for k in ("x", "y", "r", "material", "aggregate_id", "cell_area_m2")}
+        c_keep = ~(drop[self.contacts[:, 0]] | drop[self.contacts[:, 1]]) if self.n_contacts else np.zeros(0, dtype=bool)
+        per_contact = {k: getattr(self, k)[c_keep] for k in ("kind", "facet_length_m", "facet_area_m2", "distance_m", "gap_m",
+                                                            "facet_segment_m")}
+        contacts = new_index[self.contacts[c_keep]].astype(self.contacts.dtype)
+        n_keep = ~(drop[self.neighbours[:, 0]] | drop[self.neighbours[:, 1]]) if len(self.neighbours) else np.zeros(0, dtype=bool)
+        neighbours = new_index[self.neighbours[n_keep]].astype(self.neighbours.dtype)
+        return Assembly(contacts=contacts, neighbours=neighbours, neighbour_facet_length_m=self.neighbour_facet_length_m[n_keep],
+                        polygons=list(self.polygons), aggregate_sieve_size_m=self.aggregate_sieve_size_m,
+                        aggregate_fraction=self.aggregate_fraction, aggregate_aspect_ratio=self.aggregate_aspect_ratio,
+                        width_m=self.width_m, height_m=self.height_m, thickness_m=self.thickness_m, seed=self.seed,
+                        parameters=dict(self.parameters), stats=dict(self.stats, removed_particles=int(drop.sum())),
+                        **per_particle, **per_contact)
+
     # ---------------------------------------------------------------- summary
     def summary(self):
         """Plain-JSON dictionary of the measured figures (see docs/mesostructure.md)."""
