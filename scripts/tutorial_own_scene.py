@@ -7,7 +7,7 @@ A 20 x 20 mm concrete with 30 % aggregates, ISR swelling of the mortar only (the
 aggregates do not swell), aging viscoelastic mortar and ITZ with per-kind tensile strengths,
 the ADR solver at 5 steps a decade from 1 to 3650 days. Writes OUT/mesostructure.png,
 OUT/history.csv (one row per physical step, units in the header) and OUT/history.png (strain
-and broken contacts against time). About 15 s on one core.
+and broken contacts against time). About 20 s on one core.
 """
 # --- 0. Command line: only the output folder --------------------------------------------------
 import argparse
