@@ -294,6 +294,28 @@ def test_unplaceable_aggregates_error():
                       max_placement_attempts=50)
 
 
+def test_a_specimen_too_small_for_its_aggregates_says_so_and_the_quoted_size_holds():
+    """15 x 15 mm, seed 1 (issue 17): the default aggregates do not fit. The error is a ValueError
+    (scripts report it without a traceback) naming the specimen, the seed, how much was drawn and
+    placed, and the size from which every seed tried places them; that size is checked here on
+    seeds the quoted measurement (0-299) includes."""
+    import re
+    with pytest.raises(ValueError) as ei:
+        meso.generate(seed=1, width_mm=15, height_mm=15)
+    assert isinstance(ei.value, meso.AggregatePlacementError)
+    msg = str(ei.value)
+    assert "15 x 15 mm specimen, seed 1" in msg and "aggregate_area_fraction = 0.35" in msg
+    k, n = map(int, re.search(r"aggregate (\d+) of (\d+)", msg).groups())
+    drawn, placed = map(float, re.search(r"drawn cover ([\d.]+) %.*placed cover ([\d.]+) %", msg).groups())
+    assert 1 < k <= n and f"the {k - 1} placed" in msg and f"The {n} drawn" in msg
+    assert 0 < placed < drawn  # the one that found no place is missing from the placed area
+    size = aggmod.MIN_RELIABLE_SIZE_MM
+    assert f"from {size:g} x {size:g} mm on" in msg
+    for seed in range(0, 300, 10):
+        a = meso.generate(seed=seed, width_mm=size, height_mm=size)
+        assert a.n_aggregates > 0
+
+
 # ---------------------------------------------------------------------------- picture and script
 
 

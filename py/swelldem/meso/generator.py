@@ -96,7 +96,7 @@ def generate(params=None, seed=0, **overrides):
     W, H = float(p.width_mm), float(p.height_mm)
     # 1. aggregates
     t = time.perf_counter()
-    aggs = place_aggregates(p, draw_aggregates(p, rng), rng)
+    aggs = place_aggregates(p, draw_aggregates(p, rng), rng, seed=seed)
     timings["aggregates"] = time.perf_counter() - t
 
     # 2. packing (mm)

@@ -1,0 +1,243 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""docs/guide.md, the newcomer's path, run end to end with real YADE: the commands are taken from
+the guide's code blocks (so the page cannot drift from what runs) and run in a scratch folder that
+links the repository's scripts/ and py/: the own-scene tutorial, a small first run with its
+ParaView files, a two-line yade-batch sweep and its comparison table, and a specimen too small
+for its aggregates. The outputs are checked against expectations computed here: log-time step
+times, bounds from the paper's data and the kinds' strengths, and the ParaView files read with
+VTK's own reader (python3-vtk9) and refitted with numpy."""
+import csv
+import json
+import math
+import os
+import re
+import subprocess
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pytest
+
+from conftest import REPO, build_dir
+from swelldem import meso, paper
+
+GUIDE = os.path.join(REPO, "docs", "guide.md")
+
+
+def guide_text():
+    with open(GUIDE) as f:
+        return f.read()
+
+
+def code_blocks(lang, text=None):
+    """The guide's fenced code blocks of language `lang`, in order."""
+    return re.findall(r"^```" + lang + r"\n(.*?)^```", text or guide_text(), flags=re.S | re.M)
+
+
+def guide_command(key):
+    """The one command of the guide's sh blocks that contains `key` (continuation lines joined)."""
+    commands = [c.strip() for b in code_blocks("sh") for c in re.sub(r"\\\n\s*", "", b).splitlines()
+                if key in c and not c.lstrip().startswith("#")]
+    assert len(commands) == 1, f"the guide has {len(commands)} sh commands with {key!r}: {commands}"
+    return commands[0].split("  #")[0]
+
+
+def quoted_after(command_key):
+    """The indented block (a message the guide quotes) that follows the sh block holding `command_key`."""
+    text = guide_text()
+    at = text.index(command_key)
+    rest = text[text.index("```\n", at) + 4:]
+    m = re.match(r"\n((?:    .*\n)+)", rest)
+    assert m, f"no indented block after the command with {command_key!r}"
+    return m.group(1).strip()
+
+
+@pytest.fixture(scope="module")
+def work(tmp_path_factory):
+    """A folder standing for the repository's top: scripts/ and py/ linked, outputs written here."""
+    w = tmp_path_factory.mktemp("guide")
+    for d in ("scripts", "py"):
+        os.symlink(os.path.join(REPO, d), w / d)
+    return w
+
+
+def run(command, cwd, timeout=300):
+    env = dict(os.environ, SWELLDEM_BUILD_DIR=build_dir(), OMP_NUM_THREADS="1")
+    return subprocess.run(["sh", "-c", command], cwd=cwd, capture_output=True, text=True, timeout=timeout, env=env)
+
+
+def run_ok(command, cwd, timeout=300):
+    p = run(command, cwd, timeout)
+    assert p.returncode == 0, f"{command}\nSTDOUT:\n{p.stdout[-3000:]}\nSTDERR:\n{p.stderr[-3000:]}"
+    return p
+
+
+def log_times(t0, t1, per_decade):
+    """Physical times of a run from t0 to t1 [day], per_decade a decade: t0 10^(k/N), then t1."""
+    n = math.ceil(per_decade * math.log10(t1 / t0) - 1e-9)
+    return [t0 * 10 ** (k / per_decade) for k in range(1, n)] + [t1]
+
+
+def test_the_guide_quotes_the_tutorial_script_verbatim():
+    section = guide_text().split("## 4. ")[1].split("\n## ")[0]
+    blocks = code_blocks("python", section)
+    assert len(blocks) >= 5
+    with open(os.path.join(REPO, "scripts", "tutorial_own_scene.py")) as f:
+        script = f.read()
+    for b in blocks:
+        assert b in script, f"guide block not in scripts/tutorial_own_scene.py:\n{b}"
+
+
+def test_the_tutorial_runs_and_writes_its_table_and_plots(work):
+    p = run_ok(guide_command("tutorial_own_scene.py"), work)
+    out = work / "out" / "tutorial"
+    with open(out / "history.csv") as f:
+        rows = list(csv.reader(f))
+    header, rows = rows[0], [[float(v) for v in r] for r in rows[1:]]
+    assert all(re.search(r"\[.+\]$", h) for h in header), header  # a unit on every column
+    col = {h: k for k, h in enumerate(header)}
+    times = [r[col["time [day]"]] for r in rows]
+    assert times == pytest.approx(log_times(1.0, 3650.0, 5), rel=1e-5)  # the CSV holds 6 digits
+    # Free swelling of mortar reaches the paper's Table 3.2 strain; the aggregates and the ITZ,
+    # which do not swell here, hold the specimen below it.
+    eps = [(r[col["strain x [-]"]] + r[col["strain y [-]"]]) / 2 for r in rows]
+    assert 0 < eps[-1] < paper.TABLE_3_2_EPS_FINAL
+    # The kinds' own strengths bound their forces: Fn <= f_t x facet area for every contact
+    # (intact ones up to their strength, broken ones in compression only).
+    a = meso.generate(seed=1, width_mm=20, height_mm=20, aggregate_area_fraction=0.30)
+    for name, ft in (("MORTAR", 3.5e6), ("ITZ", 1.5e6), ("AGG", 6e6)):
+        k = paper.KIND_IDS[name]
+        bound_kN = ft * a.facet_area_m2[a.kind == k].max() / 1e3
+        assert max(r[col[f"Fn 95 % {name} [kN]"]] for r in rows) <= bound_kN
+        broken = [r[col[f"broken {name} [-]"]] for r in rows]
+        assert broken == sorted(broken) and broken[-1] <= (a.kind == k).sum()
+    assert rows[-1][col["broken ITZ [-]"]] > 0  # the weakest kind cracks
+    for png in ("history.png", "mesostructure.png"):
+        with open(out / png, "rb") as f:
+            assert f.read(8) == b"\x89PNG\r\n\x1a\n"
+    assert "tutorial: 18 steps" in p.stdout
+
+
+def read_vtp(path):
+    import vtk  # python3-vtk9: ParaView's own reader library
+    from vtk.util.numpy_support import vtk_to_numpy
+    r = vtk.vtkXMLPolyDataReader()
+    r.SetFileName(str(path))
+    r.Update()
+    poly = r.GetOutput()
+    cells = poly.GetCellData()
+    arrays = {cells.GetArrayName(i): vtk_to_numpy(cells.GetArray(i)) for i in range(cells.GetNumberOfArrays())}
+    field = poly.GetFieldData()
+    fields = {field.GetArrayName(i): field.GetArray(i).GetValue(0) for i in range(field.GetNumberOfArrays())}
+    return poly, arrays, fields
+
+
+def test_a_first_run_and_its_paraview_files(work):
+    pytest.importorskip("vtk", reason="the ParaView files are read with VTK's reader: apt-get install python3-vtk9")
+    from vtk.util.numpy_support import vtk_to_numpy
+    command = guide_command("out/first")
+    assert "--vtk-every 1" in command
+    run_ok(command, work)
+    out = work / "out" / "first"
+    res = json.loads((out / "results.json").read_text())
+    assert res["status"] == "finished"
+    times = res["times_days"]
+    assert times == pytest.approx(log_times(1.0, 3650.0, 2), rel=1e-12)
+    collections = {}
+    for name in ("particles", "contacts"):
+        root = ET.parse(out / "vtk" / f"{name}.pvd").getroot()
+        collections[name] = [(float(d.get("timestep")), d.get("file")) for d in root.find("Collection")]
+        assert [t for t, _ in collections[name]] == pytest.approx(times, rel=1e-12)  # one file a step, days
+    files = sorted(os.listdir(out / "vtk"))
+    assert len(files) == 2 * len(times) + 2
+    n_bonded = sum(res["n_contacts_by_kind"].values())
+    for s, ((_, pfile), (_, cfile)) in enumerate(zip(collections["particles"], collections["contacts"])):
+        contacts, c, cf = read_vtp(out / "vtk" / cfile)
+        assert cf["TimeValue"] == pytest.approx(times[s], rel=1e-12) and cf["step"] == s
+        bonded = c["bonded"] == 1
+        assert bonded.sum() == n_bonded and (~bonded).sum() == sum(res[f"born_broken_{k}"][s] for k in paper.KIND_NAMES)
+        for name, k in paper.KIND_IDS.items():
+            of_kind = c["kindId"] == k
+            assert (of_kind & bonded).sum() == res["n_contacts_by_kind"][name]
+            assert (of_kind & bonded & (c["broken"] == 1)).sum() == res[f"broken_{name}"][s]
+            # forces in N in the files, in kN in results.json
+            q05, q95 = np.quantile(c["Fn"][of_kind], [0.05, 0.95]) / 1e3
+            assert (q05, q95) == pytest.approx((res[f"fn_p05_kN_{name}"][s], res[f"fn_p95_kN_{name}"][s]), rel=1e-9, abs=1e-15)
+        # The strain refitted from the files: discs with at least 2 bonded contacts, weights r^2,
+        # displacement u = a + G X (least squares), X the start position = centre - displacement.
+        particles, pa, _ = read_vtp(out / "vtk" / pfile)
+        assert particles.GetNumberOfPolys() == res["n_particles"]
+        pts = vtk_to_numpy(particles.GetPoints().GetData())[:, :2].reshape(res["n_particles"], -1, 2)
+        u = pa["displacement"][:, :2]
+        X = pts.mean(axis=1) - u
+        body = vtk_to_numpy(contacts.GetPointData().GetArray("id"))
+        ends = body[vtk_to_numpy(contacts.GetLines().GetData()).reshape(-1, 3)[:, 1:][bonded]]
+        coordination = np.bincount(ends.ravel(), minlength=res["n_particles"])
+        w = np.sqrt(np.where(coordination >= 2, pa["radius"] ** 2, 0.0))
+        A = np.column_stack([np.ones(len(X)), X]) * w[:, None]
+        G = np.linalg.lstsq(A, u * w[:, None], rcond=None)[0]
+        assert (G[1, 0], G[2, 1]) == pytest.approx((res["swelling_strain_x"][s], res["swelling_strain_y"][s]), rel=1e-6, abs=1e-12)
+    # The guide's Python snippet prints the ITZ's 95 % quantile at the last step in kN.
+    snippet = next(b for b in code_blocks("python") if "vtkXMLPolyDataReader" in b)
+    p = subprocess.run(["/usr/bin/python3", "-c", snippet], cwd=work, capture_output=True, text=True, timeout=60)
+    assert p.returncode == 0, p.stderr
+    t, q95 = map(float, re.search(r"t = (\S+) d: ITZ 95 % quantile (\S+) kN", p.stdout).groups())
+    assert t == pytest.approx(3650.0) and q95 == pytest.approx(res["fn_p95_kN_ITZ"][-1], abs=1e-4)
+
+
+def test_a_sweep_with_yade_batch_and_its_comparison(work):
+    table = code_blocks("text")[0]
+    assert table.startswith("description")
+    (work / "my_sweep.table").write_text(table)
+    lines = [ln.split() for ln in table.strip().splitlines()]
+    jobs = {ln[0]: dict(zip(lines[0][1:], ln[1:])) for ln in lines[1:]}
+    assert len(jobs) == 2
+    run_ok(guide_command("yade-batch"), work, timeout=600)
+    sweep = work / "out" / "my_sweep"
+    res = {}
+    for name, cols in jobs.items():
+        res[name] = r = json.loads((sweep / name / "results.json").read_text())
+        assert r["status"] == "finished" and r["yade_tags"]["description"] == name
+        c = r["config"]
+        assert tuple(c["size_mm"]) == (16, 16) and c["seed"] == int(cols["seed"])
+        assert r["times_days"] == pytest.approx(log_times(1.0, 3650.0, float(cols["steps_per_decade"])), rel=1e-12)
+        assert (sweep / f"{name}.log").exists()
+    low, high = res["itz_2MPa"], res["itz_3MPa"]
+    assert high["config"]["kind_params"] == {"ITZ": {"tensileStrength": 3e6}}
+    # the same mesostructure; a 50 % stronger ITZ breaks fewer of its contacts
+    assert low["n_contacts_by_kind"] == high["n_contacts_by_kind"]
+    assert 0 < high["broken_ITZ"][-1] < low["broken_ITZ"][-1]
+    run_ok(guide_command("compare_runs.py"), work)
+    md = (sweep / "compare" / "compare.md").read_text()
+    assert "forces (kN)" in md and "Reference: out/my_sweep/itz_2MPa" in md
+    # one row per kind and run, in the command's order (reference first): the ITZ broken counts
+    itz = re.findall(r"^\| viscoelastic \| yes \| ITZ \|.*\| (\d+) \(([\d.]+)\) \|", md, flags=re.M)
+    n_itz = low["n_contacts_by_kind"]["ITZ"]
+    assert [(int(b), float(p)) for b, p in itz] == [(r["broken_ITZ"][-1], round(100 * r["broken_ITZ"][-1] / n_itz, 1))
+                                                    for r in (low, high)]
+
+
+def test_a_specimen_too_small_for_its_aggregates_is_refused_as_the_guide_says(work):
+    command = guide_command("out/too_small")
+    p = run(command, work, timeout=120)
+    assert p.returncode == 1 and "Traceback" not in p.stderr, p.stderr[-3000:]
+    assert quoted_after("out/too_small") in p.stderr
+    # below 11 mm the parameter check refuses the specimen, in the words the guide quotes
+    quoted = re.search(r"\n    (swelldem: sieve_fractions_mm = .*)\n", guide_text()).group(1)
+    with pytest.raises(meso.MesoParameterError) as ei:
+        meso.generate(seed=1, width_mm=10, height_mm=10)
+    assert str(ei.value) == quoted
+
+
+def test_the_size_table_of_the_guide_holds_for_seeds_1_to_3():
+    section = guide_text().split("## 8. ")[1].split("\n## ")[0]
+    rows = re.findall(r"^\| (\d+) \| [^|]+ \| ([^|]+) \|$", section, flags=re.M)
+    assert len(rows) >= 5
+    for size, failing in rows:
+        expected = sorted(int(s) for s in re.findall(r"\d+", failing))
+        got = []
+        for seed in (1, 2, 3):
+            try:
+                meso.generate(seed=seed, width_mm=int(size), height_mm=int(size))
+            except meso.AggregatePlacementError:
+                got.append(seed)
+        assert got == expected, f"{size} mm: seeds {got} fail, the guide says {expected}"
