@@ -165,14 +165,14 @@ def status_of(folder):
 
 FIGURES = {  # file suffix -> (what it shows, the paper's figures of the same form per scenario)
     "strain": ("swelling strain in x against log time, the four runs and the free swelling of the swelling phase",
-               {"isr": "3.3 and 3.9 (right)", "asr-fine": "3.4 and 3.10 (right)", "asr-coarse": "3.5 and 3.11 (right)"}),
+               {"isr": "Figures 3.3 and 3.9 (right)", "asr-fine": "Figures 3.4 and 3.10 (right)", "asr-coarse": "Figures 3.5 and 3.11 (right)"}),
     "unbalanced_nodmg": ("unbalanced-force ratio against cumulative iterations, elastic and viscoelastic, no damage",
-                         {"isr": "3.3 (left)", "asr-fine": "3.4 (left)", "asr-coarse": "3.5 (left)"}),
+                         {"isr": "Figure 3.3 (left)", "asr-fine": "Figure 3.4 (left)", "asr-coarse": "Figure 3.5 (left)"}),
     "unbalanced_dmg": ("unbalanced-force ratio against cumulative iterations, elastic and viscoelastic, with damage",
-                       {"isr": "3.9 (left)", "asr-fine": "3.10 (left)", "asr-coarse": "3.11 (left)"}),
+                       {"isr": "Figure 3.9 (left)", "asr-fine": "Figure 3.10 (left)", "asr-coarse": "Figure 3.11 (left)"}),
     "forces_nodmg": ("5 % / 95 % normal-force quantiles per kind against log time with the tensile capacity f_t A; "
-                     "elastic (top), viscoelastic (bottom), no damage", {"isr": "3.6", "asr-fine": "3.7", "asr-coarse": "3.8"}),
-    "forces_dmg": ("the same with damage", {"isr": "3.12", "asr-fine": "3.13", "asr-coarse": "3.14"}),
+                     "elastic (top), viscoelastic (bottom), no damage", {"isr": "Figure 3.6", "asr-fine": "Figure 3.7", "asr-coarse": "Figure 3.8"}),
+    "forces_dmg": ("the same with damage", {"isr": "Figure 3.12", "asr-fine": "Figure 3.13", "asr-coarse": "Figure 3.14"}),
 }
 
 
@@ -238,7 +238,7 @@ def report_study(a):
         index += [f"### {report.LABEL[sc]}", ""]
         for key, (what, paper_fig) in FIGURES.items():
             if key in made:
-                index += [f"- `{made[key]}`: {what}; the paper's Figure {paper_fig[sc]}.", "", f"![{made[key]}]({made[key]})", ""]
+                index += [f"- `{made[key]}`: {what}; the paper's {paper_fig[sc]}.", "", f"![{made[key]}]({made[key]})", ""]
         for b in paper.BEHAVIOUR_KEYS:
             name = f"{sc}-{b}-dmg"
             if os.path.exists(os.path.join(a.out, name, "crack_map.png")):

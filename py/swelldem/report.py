@@ -250,17 +250,32 @@ def plot_unbalanced(path, res):
     _save(fig, path)
 
 
-def _free_swelling_curve(ax, res, t_last):
-    """The scenario's free swelling eps_inf (xi(t) - xi(t0)) as a black dashed line [1e-6]."""
+def _free_swelling_curve(ax, res, t_last, specimen_max):
+    """The scenario's free swelling eps_inf (xi(t) - xi(t0)) as a black dashed line [1e-6], on a
+    right-hand axis of its own when the specimen swells less than a fifth of it (ASR-coarse: only
+    the gel pockets swell), so that the specimen's curves keep the height of the plot. Then the
+    legend of both axes."""
     cfg = res.get("config") or {}
     eps_inf = cfg.get("eps_inf", EPS_INF)
     t0 = cfg.get("t_start_days", 1.0)
     tau_c, tau_l, _ = KINETICS[SCENARIOS[res["scenario"]]["kinetics"]]
     tt = np.geomspace(t0, t_last, 200)
+    free = free_swelling(tt, res["scenario"], eps_inf, t0) * 1e6
     phase = "gel pockets" if res["scenario"] == "asr-coarse" else " and ".join(SCENARIOS[res["scenario"]]["swelling_kinds"]) + " contacts"
-    ax.semilogx(tt, free_swelling(tt, res["scenario"], eps_inf, t0) * 1e6, "--", color="k", lw=1,
-                label=f"free swelling of the swelling phase ({phase}):\n"
-                      f"$\\varepsilon_\\infty$ = {eps_inf * 1e6:g}e-6 x Larive $\\xi(t)$, $\\tau_c$ {tau_c:g} d, $\\tau_L$ {tau_l:g} d")
+    apart = specimen_max == specimen_max and specimen_max < 0.2 * free.max()
+    fax = ax.twinx() if apart else ax
+    fax.semilogx(tt, free, "--", color="k", lw=1,
+                 label=f"free swelling of the swelling phase ({phase}){', right axis' if apart else ''}:\n"
+                       f"$\\varepsilon_\\infty$ = {eps_inf * 1e6:g}e-6 x Larive $\\xi(t)$, $\\tau_c$ {tau_c:g} d, $\\tau_L$ {tau_l:g} d")
+    if apart:
+        fax.set_ylabel("free swelling [1e-6]")
+    handles = ax.get_legend_handles_labels()[0] + (fax.get_legend_handles_labels()[0] if apart else [])
+    ax.legend(handles=handles, fontsize=7, loc="upper left")
+
+
+def _max(*series):
+    values = [v for s in series for v in (s or []) if v == v]
+    return max(values) * 1e6 if values else float("nan")
 
 
 def plot_strain(path, res):
@@ -271,11 +286,10 @@ def plot_strain(path, res):
     fig, ax = plt.subplots(figsize=(7, 4.5))
     ax.semilogx(t, np.array(res["swelling_strain_x"]) * 1e6, "o-", ms=3, label="specimen, x")
     ax.semilogx(t, np.array(res["swelling_strain_y"]) * 1e6, "s-", ms=3, label="specimen, y")
-    if len(t):
-        _free_swelling_curve(ax, res, t[-1])
     ax.set(xlabel="time [day]", ylabel="swelling strain [1e-6]", title=_title(res))
     ax.grid(True, which="both", lw=0.3)
-    ax.legend(fontsize=7, loc="upper left")
+    if len(t):
+        _free_swelling_curve(ax, res, t[-1], _max(res["swelling_strain_x"], res["swelling_strain_y"]))
     _save(fig, path)
 
 
@@ -442,11 +456,12 @@ def plot_strain_overlay(path, runs, title):
             ax.semilogx(t, np.array(res.get("swelling_strain_x") or [np.nan] * len(t)) * 1e6, marker="o", ms=2.5, label=label,
                         **_style(res, k))
             t_last = max(t_last, t[-1])
-    if runs and t_last > 0:
-        _free_swelling_curve(ax, runs[0][1], t_last)
     ax.set(xlabel="time [day]", ylabel="swelling strain in x [1e-6]", title=title)
     ax.grid(True, which="both", lw=0.3)
-    ax.legend(fontsize=7, loc="upper left")
+    if runs and t_last > 0:
+        _free_swelling_curve(ax, runs[0][1], t_last, _max(*(r.get("swelling_strain_x") for _, r in runs)))
+    elif runs:
+        ax.legend(fontsize=7, loc="upper left")
     _save(fig, path)
 
 
@@ -514,6 +529,12 @@ def write_results(out, res):
     os.replace(os.path.join(out, "results.json.tmp"), os.path.join(out, "results.json"))
 
 
+#: A variation is shown only against a reference force of at least this [kN]: the paper prints "-"
+#: against its 0.0 kN references (0.1 kN precision), and a reference near 0 makes any percentage
+#: meaningless.
+VARIATION_MIN_REFERENCE_KN = 0.05
+
+
 def paper_variation(reference, res):
     """The paper's variation columns [%] of run `res` against `reference` per kind, {kind: (5 %,
     95 %)}, when the pair is one of the paper's (Table 3.4: viscoelastic against elastic, no
@@ -541,7 +562,7 @@ def compare(reference, others):
         paper_var = paper_variation(reference, res) if n else None
         for r in final_rows(res):
             rr = ref_rows[r["kind"]]
-            var = lambda a, b: 100.0 * (a - b) / b if not math.isnan(b) and abs(b) > 1e-12 else float("nan")
+            var = lambda a, b: 100.0 * (a - b) / b if not math.isnan(b) and abs(b) >= VARIATION_MIN_REFERENCE_KN else float("nan")
             pv = paper_values.get(r["kind"], {})
             pvar = paper_var.get(r["kind"], (None, None)) if paper_var else (None, None)
             table.append({"scenario": res["scenario"], "behaviour": res["behaviour"], "damage": res["damage"],
@@ -571,7 +592,8 @@ def compare_md(rows, reference_name, reference):
                      f"{r['fn_p95_kN']:.2f} | {_f(r['paper_fn_p95_kN'], '{:.1f}')} | {fmt(r['var_p95_pct'])} | {fmt(r['paper_var_p95_pct'])} | "
                      f"{r['broken']} ({r['broken_pct']:.1f}) | {paper_broken} | {r['run']} |")
     lines += ["", f"Reference: {reference_name} ({reference['behaviour']}, damage {'on' if reference['damage'] else 'off'}). "
-              "Variation: (value - reference) / reference; '-' where the reference is 0 or the paper has no such run. "
+              "Variation: (value - reference) / reference; '-' where the reference is below 0.05 kN in magnitude (the paper's 0.0) "
+              "or the paper has no such run. "
               "Paper: Tables 3.4, 3.6 and 3.7 (100 x 100 mm). " + size_note(reference)]
     states = {r["run"] for r in rows}
     if states != {"finished"}:
@@ -612,7 +634,7 @@ def paper_tables_md(runs):
                         ours, theirs = (None, None), (None, None)
                     else:
                         rr = ref_rows.get(kind)
-                        var = lambda a, b: 100.0 * (a - b) / b if rr is not None and abs(b) > 1e-12 else None
+                        var = lambda a, b: 100.0 * (a - b) / b if abs(b) >= VARIATION_MIN_REFERENCE_KN else None
                         ours = (var(r["fn_p05_kN"], rr["fn_p05_kN"]), var(r["fn_p95_kN"], rr["fn_p95_kN"])) if rr else (None, None)
                         theirs = VARIATION[table][sc][kind][:2]
                     lines.append(f"| {LABEL[sc]} | {BEHAVIOUR_WORDS[beh]}{mark} | {kind} | {r['fn_p05_kN']:.2f} | {p['p05']:.1f} | "
@@ -622,7 +644,7 @@ def paper_tables_md(runs):
     if unfinished:
         lines += ["† not finished: the numbers are those of the run's last step done, not of the end of the test.", ""]
     lines += ["Variation: of the aging viscoelastic run to the elastic run of the same damage setting, (value - elastic) / elastic; "
-              "'-' for the elastic run itself and where the elastic value is 0. Broken: contacts bonded at the start that broke; "
+              "'-' for the elastic run itself and where the elastic value is below 0.05 kN in magnitude (the paper's 0.0). Broken: contacts bonded at the start that broke; "
               "contacts made during the run (born broken) are not counted. The paper's ASR-fine elastic ITZ and AGG 95 % values "
               "(0.6, 1.2 kN) contradict its own variations (-69 %, -67 % to 3.3, 3.7 kN), which imply about 10.6 and 11.2 kN.", "",
               "### Runs", "",
