@@ -135,8 +135,8 @@ def size_note(res):
     w, h = size
     same = (float(w), float(h)) == (pw, ph)
     return (f"Specimen {float(w):g} x {float(h):g} mm" + (", as the paper's." if same else
-            f"; the paper's is {pw:g} x {ph:g} mm, so the paper's values are for a specimen "
-            f"{pw * ph / (float(w) * float(h)):.3g} times larger in area."))
+            f"; the paper's is {pw:g} x {ph:g} mm ({pw * ph / (float(w) * float(h)):.3g} times the area; "
+            "docs/scenarios.md compares 40 and 100 mm runs)."))
 
 
 def _f(v, fmt="{:.2f}"):
