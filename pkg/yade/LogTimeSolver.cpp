@@ -39,6 +39,7 @@ void LogTimeSolver::postLoad()
 	core::requirePositive(getClassName() + ".divergenceRatio", divergenceRatio);
 	core::require(colliderPeriod >= 1, getClassName() + ".colliderPeriod", colliderPeriod, ">= 1");
 	core::requireOpenInterval(getClassName() + ".relativeForceFloor", relativeForceFloor, 0, 1);
+	core::require(historyEvery >= 0, getClassName() + ".historyEvery", historyEvery, ">= 0 (0: no history)");
 }
 
 void LogTimeSolver::afterLoad()
@@ -294,6 +295,9 @@ LogTimeSolver::Balance LogTimeSolver::measureBalance()
 	// stiffness): a step loaded by next to nothing converges there instead of never.
 	b.atRoundOff = nReal > 0 && nFree > 0 && sumRes / nFree <= 256 * std::numeric_limits<Real>::epsilon() * posScale * sumKn / nReal;
 	unbalanced   = b.ratio;
+	// Each step's first iteration marks where its load enters, the regular records show the decay,
+	// the converged iteration (commitPhysicalStep) where it ends.
+	if (historyEvery > 0 && (iterInStep == 1 || totalIterations % historyEvery == 0)) recordHistory();
 	if (nReal != nRealSeen) {
 		refreshKinds();
 		nRealSeen = nReal;
@@ -351,6 +355,7 @@ void LogTimeSolver::commitPhysicalStep()
 	stepIterations.push_back(iterInStep);
 	stepUnbalanced.push_back(unbalanced);
 	stepWall.push_back(wallNow());
+	if (historyEvery > 0 && (historyIteration.empty() || historyIteration.back() != Real(totalIterations))) recordHistory();
 	if (verbose) progressLine();
 	if (step == nSteps()) {
 		finished = true;
@@ -361,6 +366,12 @@ void LogTimeSolver::commitPhysicalStep()
 		beginPhysicalStep();
 	}
 	runStepHook();
+}
+
+void LogTimeSolver::recordHistory()
+{
+	historyIteration.push_back(Real(totalIterations));
+	historyUnbalanced.push_back(unbalanced);
 }
 
 void LogTimeSolver::runStepHook()
