@@ -1,13 +1,17 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 """Compares swelling-test runs in the form of the paper's Table 3.7: the 5 % / 95 % normal-force
 quantiles and broken contacts per kind at the last step, with the variation in percent against a
-reference run (e.g. elastic without damage).
+reference run (e.g. elastic without damage), the paper's values beside ours where the paper has
+the same runs, and the runs on common figures.
 
   /usr/bin/python3 scripts/compare_runs.py --reference out/isr-el-nodmg out/isr-ve-nodmg out/isr-ve-dmg --out out/compare-isr
-writes OUT/compare.md and OUT/compare.csv (plain Python; no YADE needed). A run that did not finish
-(status failed, interrupted, or running with an old 'updated' time: the process died) is marked in
-both, its numbers being those of its last step, not of the end. A missing, truncated or foreign
-results.json is refused with a message naming it (exit status 1); bad options exit with 2."""
+writes OUT/compare.md, OUT/compare.csv and the overlays OUT/compare_strain.png (swelling strain
+against log time with the free swelling), OUT/compare_unbalanced.png (unbalanced-force ratio
+against cumulative iterations) and OUT/compare_forces.png (one row of per-kind force quantiles per
+run) (plain Python; no YADE needed). A run that did not finish (status failed, interrupted, or
+running with an old 'updated' time: the process died) is marked in both tables, its numbers being
+those of its last step, not of the end. A missing, truncated or foreign results.json is refused
+with a message naming it (exit status 1); bad options exit with 2."""
 import argparse
 import csv
 import os
@@ -36,24 +40,15 @@ def main(argv):
     if bad:
         sys.exit(f"compare_runs.py: runs of scenario {bad} cannot be compared with a {ref['scenario']} reference")
     rows = report.compare(ref, others)
-    states = [report.run_state(r) for r in [ref] + others]
     os.makedirs(a.out, exist_ok=True)
     with open(os.path.join(a.out, "compare.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)
-    fmt = lambda v: "-" if v != v else f"{round(v)}"  # NaN (no reference value) prints as "-"
-    lines = [f"# {report.LABEL.get(ref['scenario'], ref['scenario'])}: normal contact forces (kN) and variation to the reference (%)", "",
-             "| behaviour | damage | contact | 5 % | var. % | 95 % | var. % | broken (%) | run |", "|---|---|---|---|---|---|---|---|---|"]
-    for r in rows:
-        mark = "" if r["run"] == "finished" else " †"
-        lines.append(f"| {r['behaviour']}{mark} | {'yes' if r['damage'] else 'no'} | {r['kind']} | {r['fn_p05_kN']:.2f} | {fmt(r['var_p05_pct'])} | "
-                     f"{r['fn_p95_kN']:.2f} | {fmt(r['var_p95_pct'])} | {r['broken']} ({r['broken_pct']:.1f}) | {r['run']} |")
-    lines.append("")
-    lines.append(f"Reference: {a.reference} ({ref['behaviour']}, damage {'on' if ref['damage'] else 'off'}).")
-    if any(st != "finished" for st in states):
-        lines.append("† not finished: the numbers are those of the run's last step done, not of the end of the test"
-                     + (" (the reference too: every variation is against an unfinished run)." if states[0] != "finished" else "."))
+    lines = report.compare_md(rows, a.reference, ref)
+    runs = [(f"{os.path.basename(os.path.normpath(d))}: {report.run_label(r)}", r) for d, r in zip([a.reference] + a.runs, [ref] + others)]
+    names = report.write_overlays(a.out, runs, "compare", report.LABEL.get(ref["scenario"], ref["scenario"]))
+    lines += ["", "Figures: " + ", ".join(names) + "."]
     with open(os.path.join(a.out, "compare.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
     print("\n".join(lines))

@@ -46,6 +46,7 @@ void LogTimeSolver::postLoad()
 		core::require(springAxes[i] == 0 || springAxes[i] == 1, getClassName() + ".springAxes[" + std::to_string(i) + "]", springAxes[i], "0 (x) or 1 (y)");
 	for (size_t i = 0; i < springStiffness.size(); ++i)
 		core::requireNonNegative(getClassName() + ".springStiffness[" + std::to_string(i) + "] [N/m]", springStiffness[i]);
+	core::require(historyEvery >= 0, getClassName() + ".historyEvery", historyEvery, ">= 0 (0: no history)");
 }
 
 void LogTimeSolver::afterLoad()
@@ -324,6 +325,9 @@ LogTimeSolver::Balance LogTimeSolver::measureBalance()
 	// stiffness): a step loaded by next to nothing converges there instead of never.
 	b.atRoundOff = nReal > 0 && nFree > 0 && sumRes / nFree <= 256 * std::numeric_limits<Real>::epsilon() * posScale * sumKn / nReal;
 	unbalanced   = b.ratio;
+	// Each step's first iteration marks where its load enters, the regular records show the decay,
+	// the converged iteration (commitPhysicalStep) where it ends.
+	if (historyEvery > 0 && (iterInStep == 1 || totalIterations % historyEvery == 0)) recordHistory();
 	if (nReal != nRealSeen) {
 		refreshKinds();
 		nRealSeen = nReal;
@@ -381,6 +385,7 @@ void LogTimeSolver::commitPhysicalStep()
 	stepIterations.push_back(iterInStep);
 	stepUnbalanced.push_back(unbalanced);
 	stepWall.push_back(wallNow());
+	if (historyEvery > 0 && (historyIteration.empty() || historyIteration.back() != Real(totalIterations))) recordHistory();
 	if (verbose) progressLine();
 	if (step == nSteps()) {
 		finished = true;
@@ -391,6 +396,12 @@ void LogTimeSolver::commitPhysicalStep()
 		beginPhysicalStep();
 	}
 	runStepHook();
+}
+
+void LogTimeSolver::recordHistory()
+{
+	historyIteration.push_back(Real(totalIterations));
+	historyUnbalanced.push_back(unbalanced);
 }
 
 void LogTimeSolver::runStepHook()

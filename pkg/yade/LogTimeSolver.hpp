@@ -44,6 +44,9 @@ public:
 	X(std::vector<int>, springAxes, std::vector<int>(), swelldem_attr::Setting, "Axis of each spring: 0 x, 1 y [-]")                                  \
 	X(std::vector<Real>, springStiffness, std::vector<Real>(), swelldem_attr::Setting, "Stiffness of each spring, >= 0 [N/m]")                      \
 	X(bool, verbose, true, swelldem_attr::Setting, "Print a progress line per physical step [-]")                                                      \
+	X(long, historyEvery, 20, swelldem_attr::Setting,                                                                                                    \
+	  "Iterations between two records of the unbalanced-force history (historyIteration, historyUnbalanced); the first and the last "           \
+	  "iteration of every physical step are recorded as well; 0: no history [-]")                                                                  \
 	X(std::vector<Real>, times, std::vector<Real>(), swelldem_attr::Result, "Physical times of the run, tStart first (set at the first iteration) [day]") \
 	X(int, step, 0, swelldem_attr::Result, "Current physical step (1..nSteps; step i goes from times[i-1] to times[i]) [-]")                           \
 	X(Real, physTime, 0.0, swelldem_attr::Result, "Physical time reached by the last converged step [day]")                                            \
@@ -56,6 +59,10 @@ public:
 	X(std::vector<Real>, stepRoundOff, std::vector<Real>(), swelldem_attr::Result,                                                                      \
 	  "1 where a step ended at the round-off limit of the positions above the tolerance, else 0 [-]")                                                \
 	X(std::vector<Real>, stepWall, std::vector<Real>(), swelldem_attr::Result, "Wall time at the end of each converged step since the start [s]")    \
+	X(std::vector<Real>, historyIteration, std::vector<Real>(), swelldem_attr::Result,                                                                  \
+	  "Cumulative iteration (totalIterations) of each record of the unbalanced-force history (historyEvery) [-]")                                   \
+	X(std::vector<Real>, historyUnbalanced, std::vector<Real>(), swelldem_attr::Result,                                                                 \
+	  "Unbalanced-force ratio at each record of the history, at the iteration historyIteration of the same index [-]")                           \
 	X(long, brokenSeen, 0, swelldem_attr::Result, "Break events seen so far (sum over kinds) [-]")                                                     \
 	X(long, roundStart, 0, swelldem_attr::Internal, "Iteration of the step at which the last round of breaks happened [-]")                          \
 	X(Real, forceScaleMax, 0.0, swelldem_attr::Internal, "Largest mean contact force of the run so far [N]")                                          \
@@ -136,6 +143,7 @@ private:
 	void   measureExternalScale(long nFree);
 	void   applySprings();
 	void   runStepHook();
+	void   recordHistory();
 	void   progressLine() const;
 	double wallNow() const;
 	std::chrono::steady_clock::time_point  sessionStart = std::chrono::steady_clock::now();

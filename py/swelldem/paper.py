@@ -57,3 +57,65 @@ def larive_xi(t, kinetics="isr"):
     tau_c, tau_l, _ = KINETICS[kinetics]
     t = np.asarray(t, dtype=float)
     return (1 - np.exp(-t / tau_c)) / (1 + np.exp(-(t - tau_l) / tau_c))
+
+
+#: The paper's specimen: width and height [mm] (section 3.3); runs of another size say so in their tables.
+SPECIMEN_SIZE_MM = (100.0, 100.0)
+
+#: Short names of the contact behaviours in run folders and table keys: 'el' the elastic (aging
+#: modulus) runs, 've' the aging viscoelastic ones; the paper's words for them.
+BEHAVIOUR_KEYS = {"el": "elastic", "ve": "viscoelastic"}
+BEHAVIOUR_WORDS = {"el": "elastic", "ve": "aging viscoelastic"}
+#: The damage settings of the study: 'nodmg' (paper 3.5.1-3.5.2, Table 3.4) and 'dmg' (3.5.3-3.5.5, Table 3.6).
+DAMAGE_KEYS = {"nodmg": False, "dmg": True}
+
+
+def _forces(p05, p95, broken=0, broken_pct=0.0):
+    return {"p05": p05, "p95": p95, "broken": broken, "broken_pct": broken_pct}
+
+
+#: Tables 3.4 (no damage) and 3.6 (damage): at the last step, per (scenario, 'el'|'ve',
+#: 'nodmg'|'dmg') and contact kind, the 5 % and 95 % normal-force quantiles 'p05', 'p95' [kN]
+#: and the broken contacts 'broken' [-] and their share 'broken_pct' [%] of the kind's contacts.
+TABLE_FORCES = {
+    ("isr", "el", "nodmg"): {"MORTAR": _forces(-8.3, 2.5), "ITZ": _forces(-3.7, 6.3), "AGG": _forces(0.0, 8.4)},
+    ("isr", "ve", "nodmg"): {"MORTAR": _forces(-2.0, 0.6), "ITZ": _forces(-1.6, 1.9), "AGG": _forces(-0.5, 3.1)},
+    ("asr-fine", "el", "nodmg"): {"MORTAR": _forces(-13.5, 3.8), "ITZ": _forces(-1.6, 0.6), "AGG": _forces(0.5, 1.2)},
+    ("asr-fine", "ve", "nodmg"): {"MORTAR": _forces(-3.4, 1.0), "ITZ": _forces(-0.7, 3.3), "AGG": _forces(-0.2, 3.7)},
+    ("asr-coarse", "el", "nodmg"): {"MORTAR": _forces(-1.9, 3.6), "ITZ": _forces(-8.6, 4.6), "AGG": _forces(-55.4, 30.7)},
+    ("asr-coarse", "ve", "nodmg"): {"MORTAR": _forces(-0.7, 1.1), "ITZ": _forces(-3.2, 1.9), "AGG": _forces(-47.7, 31.8)},
+    ("isr", "el", "dmg"): {"MORTAR": _forces(-1.5, 1.4, 2406, 12.4), "ITZ": _forces(0.0, 0.0, 4568, 90.3), "AGG": _forces(-0.4, 0.5, 1540, 16.2)},
+    ("isr", "ve", "dmg"): {"MORTAR": _forces(-1.1, 0.7, 85, 0.4), "ITZ": _forces(-0.7, 0.8, 3456, 68.3), "AGG": _forces(-0.7, 1.6, 219, 2.3)},
+    ("asr-fine", "el", "dmg"): {"MORTAR": _forces(-1.6, 1.5, 2636, 13.6), "ITZ": _forces(0.0, 0.0, 4980, 98.5), "AGG": _forces(0.0, 0.0, 585, 6.2)},
+    ("asr-fine", "ve", "dmg"): {"MORTAR": _forces(-0.7, 0.6, 213, 1.1), "ITZ": _forces(-0.1, 0.3, 4346, 85.9), "AGG": _forces(-0.3, 0.7, 279, 2.9)},
+    ("asr-coarse", "el", "dmg"): {"MORTAR": _forces(-0.4, 0.4, 4128, 21.3), "ITZ": _forces(-0.3, 0.2, 3107, 61.4),
+                                  "AGG": _forces(-0.5, 0.5, 2995, 31.5)},
+    ("asr-coarse", "ve", "dmg"): {"MORTAR": _forces(-0.6, 0.9, 1492, 7.7), "ITZ": _forces(-1.4, 0.6, 1871, 37.0),
+                                  "AGG": _forces(-1.9, 1.1, 2925, 30.8)},
+}
+
+#: The paper's "variation to reference contact behaviour" columns [%], (value - reference) /
+#: reference of the 5 % and 95 % quantiles (and, in Table 3.6, of the broken count); None where the
+#: paper prints "-" (a reference of 0.0). Per table, scenario and kind:
+#: '3.4': aging viscoelastic against elastic, no damage; '3.6': aging viscoelastic against elastic,
+#: both with damage (5 %, 95 %, broken); '3.7': aging viscoelastic with damage against elastic
+#: without damage (Table 3.7's viscoelastic no-damage rows repeat Table 3.4's).
+VARIATION = {
+    "3.4": {"isr": {"MORTAR": (-76, -76), "ITZ": (-57, -70), "AGG": (None, -63)},
+            "asr-fine": {"MORTAR": (-75, -74), "ITZ": (-56, -69), "AGG": (-140, -67)},
+            "asr-coarse": {"MORTAR": (-63, -69), "ITZ": (-63, -59), "AGG": (-14, 4)}},
+    "3.6": {"isr": {"MORTAR": (-27, -50, -96), "ITZ": (None, None, -24), "AGG": (75, 220, -86)},
+            "asr-fine": {"MORTAR": (-56, -60, -92), "ITZ": (None, None, -13), "AGG": (None, None, -52)},
+            "asr-coarse": {"MORTAR": (50, 125, -64), "ITZ": (367, 200, -40), "AGG": (280, 120, -2)}},
+    "3.7": {"isr": {"MORTAR": (-87, -72), "ITZ": (-81, -87), "AGG": (None, -81)},
+            "asr-fine": {"MORTAR": (-95, -84), "ITZ": (-94, -97), "AGG": (-160, -94)},
+            "asr-coarse": {"MORTAR": (-68, -75), "ITZ": (-84, -87), "AGG": (-97, -96)}},
+}
+
+
+def free_swelling(t, scenario, eps_inf=EPS_INF, t_start=1.0):
+    """Free swelling strain [-] of the swelling phase of `scenario` (a SCENARIOS key) at times t
+    [day] since the stress-free state at t_start [day]: eps_inf (xi(t) - xi(t_start)) with the
+    scenario's Larive kinetics, what an unrestrained swelling contact reaches."""
+    kinetics = SCENARIOS[scenario]["kinetics"]
+    return eps_inf * (larive_xi(t, kinetics) - larive_xi(t_start, kinetics))

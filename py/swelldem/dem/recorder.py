@@ -54,17 +54,41 @@ def broken_contacts(bonded=None):
             if i.isReal and i.phys.broken and (bonded is None or _pair(i) in bonded)]
 
 
+#: The file next to results.json that holds, for every contact bonded at the start, the step at
+#: which it broke (report.load_breaks reads it).
+BREAKS_FILE = "contact_breaks.npz"
+
+
+def tensile_capacity():
+    """Per kind name, the tensile capacity f_t A of the real, unbroken interactions of O [kN]:
+    {'min', 'median', 'max'} over the kind's contacts, and 'f_t_Pa', the kind's tensileStrength
+    (whether or not damage is on: with damage off it is the capacity the contacts do not have)."""
+    yade, _ = _yade()
+    cap, f_t = {}, {}
+    for i in yade.Omega().interactions:
+        if i.isReal and not i.phys.broken:
+            k = KIND_NAMES[i.phys.kindId] if 0 <= i.phys.kindId < len(KIND_NAMES) else None
+            if k is not None:
+                cap.setdefault(k, []).append(i.phys.kind.tensileStrength * i.phys.area / 1e3)
+                f_t[k] = float(i.phys.kind.tensileStrength)
+    return {k: {"min": float(np.min(v)), "median": float(np.median(v)), "max": float(np.max(v)), "f_t_Pa": f_t[k]}
+            for k, v in cap.items()}
+
+
 class StepRecorder:
     """Per converged physical step, appends to the results dict `res`: time [day], the swelling
     strains (affine fit of the skeleton's displacements: x, y and area), the platens' stress [Pa] and
     displacement [m] per axis (0 without platens), the largest and the mean bar stress [Pa] (with bars), the unbalanced-force ratio, the step's
     iterations and round-off flag, and per contact kind the 5 % / 95 % normal-force quantiles
     [kN], the broken contacts (bonded at the start, broken since) and the contacts made during
-    the run (born broken, 'born_broken', present at the step); then rewrites results.json in `out`
-    (a run that stops later keeps what it had) and, every vtk_every steps (0: none), the step's
-    VTK files into out/vtk/ (swelldem.dem.vtk_series; the step number in the file names is the
-    index into times_days). Made before the run starts: it takes the bonded contacts from O then,
-    and replaces the VTK series of an earlier run in out/vtk/."""
+    the run (born broken, 'born_broken', present at the step); sets 'unbalanced_history' (the
+    solver's records of the unbalanced-force ratio every historyEvery iterations: 'iteration',
+    cumulative [-], and 'ratio' [-]) and, once, 'tensile_capacity_kN' (tensile_capacity()); then
+    rewrites results.json and BREAKS_FILE (the step index into times_days at which each bonded
+    contact broke, -1 while intact) in `out` (a run that stops later keeps what it had) and, every
+    vtk_every steps (0: none), the step's VTK files into out/vtk/ (swelldem.dem.vtk_series; the
+    step number in the file names is the index into times_days). Made before the run starts: it
+    takes the bonded contacts from O then, and replaces the VTK series of an earlier run in out/vtk/."""
 
     def __init__(self, assembly, yscene, solver, res, out, vtk_every=0, platens=None, bars=None):
         self.a, self.ys, self.solver, self.res, self.out, self.vtk_every = assembly, yscene, solver, res, out, vtk_every
@@ -76,6 +100,16 @@ class StepRecorder:
         self.t0 = time.time()
         self.bonded = bonded_pairs()
         self.vtk = VtkSeries(os.path.join(out, "vtk"), self.bonded)
+        self.pairs = np.array(sorted(self.bonded), dtype=np.int32).reshape(-1, 2)
+        self.pair_index = {tuple(p): c for c, p in enumerate(self.pairs.tolist())}
+        self.pair_kind = np.full(len(self.pairs), -1, dtype=np.int8)
+        yade, _ = _yade()
+        for i in yade.Omega().interactions:
+            c = self.pair_index.get(_pair(i)) if i.isReal else None
+            if c is not None:
+                self.pair_kind[c] = i.phys.kindId
+        self.break_step = np.full(len(self.pairs), -1, dtype=np.int32)
+        res["tensile_capacity_kN"] = tensile_capacity()
 
     def __call__(self):
         s = affine_strain(self.ref, self.ys.positions(), weights=self.weights)
@@ -106,11 +140,33 @@ class StepRecorder:
             r["per_kind"][name]["broken"].append(int((broken & bonded)[sel].sum()))
             r["per_kind"][name].setdefault("born_broken", []).append(int((~bonded)[sel].sum()))
         r["adr_iterations"] = solver.totalIterations
+        r["unbalanced_history"] = {"every": int(getattr(solver, "historyEvery", 0)),
+                                   "iteration": [int(v) for v in getattr(solver, "historyIteration", [])],
+                                   "ratio": list(getattr(solver, "historyUnbalanced", []))}
+        self.mark_breaks(len(r["times_days"]) - 1)
         r["wall_s"] = time.time() - self.t0
         r["updated"] = time.time()  # [s since the epoch] of the last step written: a killed run stays "running"
         if self.vtk_every and len(r["times_days"]) % self.vtk_every == 0:
             self.export_vtk()
         write_results(self.out, r)
+        self.write_breaks()
+
+    def mark_breaks(self, step):
+        """Gives the bonded contacts broken since the last step the index `step`."""
+        for i1, i2, _ in broken_contacts(self.bonded):
+            c = self.pair_index[(min(i1, i2), max(i1, i2))]
+            if self.break_step[c] < 0:
+                self.break_step[c] = step
+
+    def write_breaks(self):
+        """BREAKS_FILE in out: 'pairs' (m, 2) body ids id1 < id2 of the contacts bonded at the
+        start, 'kind' their kindId, 'break_step' the index into times_days of the step at which
+        each broke (-1: intact), 'times_days' [day]; written to a temporary file, then renamed."""
+        tmp = os.path.join(self.out, BREAKS_FILE + ".tmp")
+        with open(tmp, "wb") as f:
+            np.savez_compressed(f, pairs=self.pairs, kind=self.pair_kind, break_step=self.break_step,
+                                times_days=np.array(self.res["times_days"], dtype=float))
+        os.replace(tmp, os.path.join(self.out, BREAKS_FILE))
 
     def export_vtk(self):
         """The VTK files of the last recorded step, unless already written (the run's end exports
