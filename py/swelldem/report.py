@@ -369,13 +369,19 @@ def plot_crack_map(out, res, assembly, broken_contacts, step=-1, name="crack_map
                 segs.append([(s[0], s[1]), (s[2], s[3])])
         if segs:
             ax.add_collection(LineCollection(segs, colors=COLORS[kname], linewidths=1.2, label=f"{kname} ({len(segs)} broken)"))
+    bar = res.get("rebar")
+    if bar and res.get("rebar_stress_mean_Pa"):  # the bars (swelldem.dem.rebar), with their stress at that time
+        mean, big = res["rebar_stress_mean_Pa"][step] / 1e6, res["rebar_stress_max_Pa"][step] / 1e6
+        for n, y in enumerate(bar["y_m"]):
+            ax.plot([0, assembly.width_m * 1e3], [y * 1e3] * 2, "-", color="tab:blue", lw=3, alpha=0.6,
+                    label=f"bar ({100 * bar['ratio']:g} %): stress mean {mean:.0f}, largest {big:.0f} MPa" if n == 0 else None)
     ax.set_xlim(0, assembly.width_m * 1e3)
     ax.set_ylim(0, assembly.height_m * 1e3)
     ax.set_aspect("equal")
     t = res["times_days"][step] if res["times_days"] else float("nan")
     ax.set(xlabel="x [mm]", ylabel="y [mm]",
            title=f"crack map: {LABEL.get(res['scenario'], res['scenario'])}, {res['behaviour']}, t = {t:.4g} d")
-    if broken_contacts:
+    if broken_contacts or bar:
         ax.legend(loc="upper right", fontsize=8)
     _save(fig, os.path.join(out, name), dpi=130)
 
