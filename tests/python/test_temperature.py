@@ -165,3 +165,19 @@ def test_bad_temperature_input_is_refused_before_work(tmp_path, args, needle):
     assert needle.replace("{dir}", str(tmp_path)) in p.stderr, p.stderr[-2000:]
     assert "Traceback" not in p.stderr
     assert not out.exists(), "nothing is written before the checks pass"
+
+
+@pytest.mark.parametrize("args,needle", [
+    (("--temperatures-c", "23", "120"), "temperature_study.py: swelldem: temperature_c = 120.0 is out of range; allowed: "
+                                        "-273.15 < temperature_c <= 100 [C]"),
+    (("--temperatures-c", "23", "23"), "temperature_study.py: swelldem: temperatures_c = (23.0, 23.0) is out of range; "
+                                       "allowed: distinct temperatures"),
+    (("--size-mm", "nan", "30"), "temperature_study.py: swelldem: size_mm = (nan, 30.0) is out of range"),
+], ids=["hot", "twice", "size"])
+def test_temperature_study_checks_its_options_before_any_run(tmp_path, args, needle):
+    out = tmp_path / "study"
+    p = subprocess.run(["/usr/bin/python3", os.path.join(REPO, "scripts", "temperature_study.py"), *args, "--out", str(out)],
+                       capture_output=True, text=True, timeout=120, cwd=REPO)
+    assert p.returncode == 2, (p.returncode, p.stderr[-2000:])
+    assert needle in p.stderr, p.stderr[-2000:]
+    assert not out.exists(), "nothing is run or written before the checks pass"
