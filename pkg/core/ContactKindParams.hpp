@@ -50,7 +50,7 @@
     X(std::vector<double>, temperatureDays, temperatureDays, std::vector<double>(),                                       \
       "Days of the kind's temperature history, >= 0 and strictly increasing, T linear in between and held before the "  \
       "first and after the last; empty: no history, the swelling kinetics at referenceTemperature and creep at "          \
-      "creepReferenceTemperature; ContactKind.setTemperatureHistory sets both lists at once [day]")                                                                                 \
+      "creepReferenceTemperature; ContactKind.setTemperatureHistory sets both lists at once [day]")                      \
     X(std::vector<double>, temperatures, temperatures, std::vector<double>(),                                             \
       "Temperatures of the history, one per day of temperatureDays, 0 < T <= 373.15 [K]")                                \
     X(bool, thermalCreep, thermal.on, ThermalCreepParams().on,                                                            \
