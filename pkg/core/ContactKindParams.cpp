@@ -37,8 +37,7 @@ bool ContactKindParams::operator==(const ContactKindParams& o) const
 {
 #define SWELLDEM_KIND_SAME(type, name, member, def, doc) && member == o.member
     return behaviour == o.behaviour && interiorTime == o.interiorTime && swellingStrainInf == o.swellingStrainInf &&
-           referenceTemperature == o.referenceTemperature && Uc == o.Uc && UL == o.UL && b3.n == o.b3.n &&
-           b3.m == o.b3.m && b3.lambda0 == o.b3.lambda0 &&
+           b3.n == o.b3.n && b3.m == o.b3.m && b3.lambda0 == o.b3.lambda0 &&
            chain.order == o.chain.order && chain.richardson == o.chain.richardson &&
            chain.marginBelow == o.chain.marginBelow SWELLDEM_KIND_PARAMETERS(SWELLDEM_KIND_SAME);
 #undef SWELLDEM_KIND_SAME
@@ -50,6 +49,8 @@ void ContactKindParams::validate() const
     else b3.validate();
     if (behaviour == Behaviour::Viscoelastic) chain.validate();
     requirePositive("shearRatio alpha [-]", shearRatio);
+    TemperatureHistory::validate(temperatureDays, temperatures);
+    if (behaviour != Behaviour::Elastic && thermal.on) thermal.validate();
     if (swelling) {
         requireNonNegative("swellDispInf [m]", swellingDisplacementInf);
         requireNonNegative("swellingStrainInf [-]", swellingStrainInf);

@@ -14,8 +14,10 @@
 #include "core/KelvinChain.hpp"
 #include "core/SolidificationCreep.hpp"
 #include "core/SwellingKinetics.hpp"
+#include "core/TemperatureHistory.hpp"
 
 #include <string>
+#include <vector>
 
 // X(type, name, member, default, "doc [unit]"); a default the core struct already holds is named from
 // there (KelvinChainOptions, B3Params), so that each has one home.
@@ -39,6 +41,30 @@
       "SwellPhys.swellDispInf) [m]")                                                                                       \
     X(double, tauC, tauC, 50.0, "Larive characteristic time tau_c at the reference temperature [day]")                    \
     X(double, tauL, tauL, 100.0, "Larive latency time tau_L at the reference temperature [day]")                          \
+    X(double, referenceTemperature, referenceTemperature, SwellingKinetics::kT0,                                          \
+      "Reference temperature T0 of the swelling kinetics: tauC and tauL are their values at T0 [K]")                     \
+    X(double, Uc, Uc, SwellingKinetics::kUc,                                                                              \
+      "Activation energy / R of tau_c: tau_c(T) = tau_c(T0) exp[Uc (1/T - 1/T0)] (Ulm et al. 2000: 5400 +- 500 K) [K]") \
+    X(double, UL, UL, SwellingKinetics::kUL,                                                                              \
+      "Activation energy / R of tau_L: tau_L(T) = tau_L(T0) exp[UL (1/T - 1/T0)] (Ulm et al. 2000: 9400 +- 500 K) [K]") \
+    X(std::vector<double>, temperatureDays, temperatureDays, std::vector<double>(),                                       \
+      "Days of the kind's temperature history, >= 0 and strictly increasing, T linear in between and held before the "  \
+      "first and after the last; empty: no history, the swelling kinetics at referenceTemperature and creep at "          \
+      "creepReferenceTemperature; ContactKind.setTemperatureHistory sets both lists at once [day]")                      \
+    X(std::vector<double>, temperatures, temperatures, std::vector<double>(),                                             \
+      "Temperatures of the history, one per day of temperatureDays, 0 < T <= 373.15 [K]")                                \
+    X(bool, thermalCreep, thermal.on, ThermalCreepParams().on,                                                            \
+      "Creep of aging kinds follows the temperature history (microprestress-solidification theory's temperature form: "  \
+      "equivalent age, reduced time, flow viscosity; docs/temperature.md); False: only the swelling kinetics see it [-]") \
+    X(double, creepReferenceTemperature, thermal.T0, ThermalCreepParams().T0,                                             \
+      "Temperature at which the B3 q's hold (creep runs at its nominal rate) [K]")                                       \
+    X(double, creepUe, thermal.Ue, ThermalCreepParams().Ue,                                                               \
+      "Activation energy / R of hydration: the solidified volume ages in the equivalent age t_e, dt_e/dt = "             \
+      "exp[creepUe (1/T0 - 1/T)] [K]")                                                                                   \
+    X(double, creepUr, thermal.Ur, ThermalCreepParams().Ur,                                                               \
+      "Activation energy / R of the viscous processes: the Kelvin units and the flow run in the reduced time t_r [K]")   \
+    X(double, creepUs, thermal.Us, ThermalCreepParams().Us,                                                               \
+      "Activation energy / R of microprestress relaxation: the flow viscosity grows as t_s/q4, t_s its clock [K]")       \
     X(bool, damage, strength.damage, false, "Brittle failure on: tension cut-off f_t A, optional Mohr-Coulomb shear failure [-]") \
     X(double, tensileStrength, strength.tensileStrength, 4e6, "f_t; a contact breaks when Fn > f_t A [Pa]")               \
     X(bool, shearFailure, strength.shearFailure, false,                                                                   \
@@ -74,9 +100,12 @@ struct ContactKindParams {
     double swellingStrainInf = 0;       ///< alternative: d_inf = eps_inf x L per contact [-], >= 0
     double tauC;                        ///< characteristic time at T0 [day]
     double tauL;                        ///< latency time at T0 [day]
-    double referenceTemperature = SwellingKinetics::kT0;  ///< T0 [K]
-    double Uc = SwellingKinetics::kUc;  ///< [K]
-    double UL = SwellingKinetics::kUL;  ///< [K]
+    double referenceTemperature;        ///< T0 of the kinetics [K]
+    double Uc;                          ///< [K]
+    double UL;                          ///< [K]
+    std::vector<double> temperatureDays;  ///< temperature history: days [day] (empty: none)
+    std::vector<double> temperatures;     ///< and temperatures [K]
+    ThermalCreepParams thermal;           ///< creep at temperature (aging kinds with a history)
 
     BrittleStrength strength;           ///< damage (off by default)
 

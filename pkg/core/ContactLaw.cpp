@@ -16,6 +16,10 @@ ContactLaw::ContactLaw(const ContactKindParams& p, double shortestLag, double lo
         creep_ = std::make_unique<SolidificationCreep>(p_.b3, shortestLag, longestLag, p_.chain, p_.interiorTime);
     if (p_.swelling)
         kinetics_ = std::make_unique<SwellingKinetics>(p_.tauC, p_.tauL, p_.referenceTemperature, p_.Uc, p_.UL);
+    if (p_.temperatureDays.empty()) return;
+    const TemperatureHistory history(p_.temperatureDays, p_.temperatures);
+    if (kinetics_) swellingHistory_ = std::make_unique<SwellingHistory>(*kinetics_, history);
+    if (b3_ && p_.thermal.on) clocks_ = std::make_unique<ThermalCreepClocks>(p_.thermal, history);
 }
 
 std::size_t ContactLaw::hiddenStateSize() const { return creep_ ? 2 * creep_->size() : 0; }
@@ -26,15 +30,6 @@ void ContactLaw::initState(ContactState& s) const
     s.gamma.assign(hiddenStateSize(), 0.0);
 }
 
-void ContactLaw::setTemperatureHistory(std::vector<double> times, std::vector<double> temperatures)
-{
-    if (kinetics_ && !times.empty()) kinetics_->integrate(0.0, 0.0, 0.0, times, temperatures);  // validates
-    tempTimes_ = std::move(times);
-    tempValues_ = std::move(temperatures);
-    xiTime_ = 0;
-    xiValue_ = 0;
-}
-
 void ContactLaw::beginStep(double tPrev, double t)
 {
     if (p_.behaviour == Behaviour::Elastic) requireNonNegative("tPrev [day]", tPrev);
@@ -42,31 +37,22 @@ void ContactLaw::beginStep(double tPrev, double t)
     requireGreaterEqual("t [day]", t, "tPrev", tPrev);
     tPrev_ = tPrev;
     t_ = t;
+    stepTimes_ = clocks_ ? clocks_->step(tPrev, t) : StepTimes::identity(tPrev, t);
     switch (p_.behaviour) {
     case Behaviour::Elastic: stepModulus_ = p_.contactModulus; break;
     case Behaviour::AgingElastic:
-        stepModulus_ = b3_->E(SolidificationCreep::interiorTime(p_.interiorTime, tPrev, t));
+        // the static modulus ages with hydration: E at the step's equivalent age
+        stepModulus_ = b3_->E(SolidificationCreep::interiorTime(p_.interiorTime, stepTimes_.agePrev, stepTimes_.age));
         break;
     case Behaviour::Viscoelastic:
-        creep_->factors(tPrev, t, factors_);
+        creep_->factors(stepTimes_, factors_);
         stepModulus_ = factors_.Epp();
         break;
     }
     dxi_ = 0;
     if (!kinetics_) return;  // non-swelling kinds never evaluate the sigmoid
     ++swellingEvaluations_;
-    if (tempTimes_.empty()) {
-        dxi_ = kinetics_->increment(tPrev, t);
-    } else {
-        if (xiTime_ != tPrev) {  // not continuing the last step: integrate from t = 0
-            xiValue_ = kinetics_->integrate(0.0, 0.0, tPrev, tempTimes_, tempValues_);
-            xiTime_ = tPrev;
-        }
-        const double xiNew = kinetics_->integrate(xiValue_, tPrev, t, tempTimes_, tempValues_);
-        dxi_ = xiNew - xiValue_;
-        xiValue_ = xiNew;
-        xiTime_ = t;
-    }
+    dxi_ = swellingHistory_ ? swellingHistory_->increment(tPrev, t) : kinetics_->increment(tPrev, t);
 }
 
 double ContactLaw::swellingDisplacementInf(const ContactGeometry& g) const

@@ -10,6 +10,10 @@
 //   Fn = Fn_committed + kn'' (duN - du''_n - du_sw),  Fs = Fs_committed + ks'' (duS - du''_s).
 // "A scene pays only for what it uses": Elastic and AgingElastic kinds allocate no Kelvin state,
 // non-swelling kinds never evaluate the sigmoid, damage off makes no strength check.
+// Temperature (the kind's temperatureDays/temperatures): the swelling kinetics follow it through
+// SwellingHistory, and the creep of aging kinds through ThermalCreepClocks when thermal.on; both
+// are functions of the step's times alone, so a law rebuilt on a step (a reloaded scene) gives
+// the same step bit for bit.
 #pragma once
 
 #include "core/ContactGeometry.hpp"
@@ -37,10 +41,6 @@ public:
     /// Resets a contact's state (forces zero, intact) and sizes its hidden array.
     void initState(ContactState& s) const;
 
-    /// Temperature history for the swelling kinetics (piecewise linear, times [day], T [K]);
-    /// without one the kinetics run at the reference temperature in closed form.
-    void setTemperatureHistory(std::vector<double> times, std::vector<double> temperatures);
-
     /// Per-kind step set-up; requires t >= tPrev, and tPrev > 0 for aging kinds [day].
     void beginStep(double tPrev, double t);
     double stepStart() const { return tPrev_; }
@@ -51,6 +51,8 @@ public:
     double swellingIncrement() const { return dxi_; }
     /// Step factors of a Viscoelastic kind (valid after beginStep), else nullptr.
     const StepFactors* stepFactors() const { return creep_ ? &factors_ : nullptr; }
+    /// The step's times as creep sees them (the physical ones unless creep follows a temperature history).
+    const StepTimes& stepTimes() const { return stepTimes_; }
     /// How many times the sigmoid/ODE was evaluated (for the "pays for what it uses" tests).
     long swellingEvaluations() const { return swellingEvaluations_; }
 
@@ -100,10 +102,11 @@ private:
     std::unique_ptr<SolidificationCreep> creep_;
     std::unique_ptr<B3Compliance> b3_;
     std::unique_ptr<SwellingKinetics> kinetics_;
-    std::vector<double> tempTimes_, tempValues_;
+    std::unique_ptr<SwellingHistory> swellingHistory_;  // kinetics under a temperature history
+    std::unique_ptr<ThermalCreepClocks> clocks_;        // creep under a temperature history
     StepFactors factors_;
+    StepTimes stepTimes_;
     double tPrev_ = 0, t_ = 0, stepModulus_ = 0, dxi_ = 0;
-    double xiTime_ = 0, xiValue_ = 0;  // ODE state with a temperature history
     long swellingEvaluations_ = 0;
 };
 

@@ -15,6 +15,12 @@ const B3Params& validated(const B3Params& p)
     return p;
 }
 
+const TemperatureHistory& checked(const ThermalCreepParams& p, const TemperatureHistory& h)
+{
+    p.validate();
+    return h;
+}
+
 // 1 - lambda with lambda = (1 - exp(-x))/x, x = dt/tau >= 0, without cancellation for small x.
 double oneMinusLambda(double x, double oneMinusBeta)
 {
@@ -62,15 +68,23 @@ void SolidificationCreep::factors(double tPrev, double t, StepFactors& f) const
 {
     requirePositive("tPrev [day]", tPrev);
     requireGreaterEqual("t [day]", t, "tPrev", tPrev);
+    factors(StepTimes::identity(tPrev, t), f);
+}
+
+void SolidificationCreep::factors(const StepTimes& s, StepFactors& f) const
+{
+    requirePositive("tPrev [day]", s.tPrev);
+    requireGreaterEqual("t [day]", s.t, "tPrev", s.tPrev);
     const std::size_t N = chain_.size();
-    f.tPrev = tPrev;
-    f.t = t;
-    f.dt = t - tPrev;
-    f.tStar = interiorTime(rule_, tPrev, t);
+    f.tPrev = s.tPrev;
+    f.t = s.t;
+    f.dt = s.t - s.tPrev;
+    f.tStar = interiorTime(rule_, s.agePrev, s.age);
     f.invV = std::pow(p_.lambda0 / f.tStar, p_.m) + p_.q3 / p_.q2;
-    const double x = f.dt / tPrev;
-    f.flowLog = std::log1p(x);
-    f.flowW = flowShare(x, f.flowLog);
+    const double x = (s.flow - s.flowPrev) / s.flowPrev;
+    const double lnRatio = std::log1p(x);
+    f.flowLog = s.flowRatio * lnRatio;
+    f.flowW = s.flowRatio * flowShare(x, lnRatio);
     f.q4 = p_.q4;
     f.oneMinusBeta.resize(N);
     f.A1mB.resize(N);
@@ -80,7 +94,7 @@ void SolidificationCreep::factors(double tPrev, double t, StepFactors& f) const
     double sumL = chain_.A0();
     f.sumA1mB = 0;
     for (std::size_t i = 0; i < N; ++i) {
-        const double xi = f.dt / tau[i];
+        const double xi = s.reducedDt / tau[i];
         const double omb = -std::expm1(-xi);  // 1 - beta, exact for tiny xi, 1 for huge xi
         f.oneMinusBeta[i] = omb;
         f.A1mB[i] = A[i] * omb;
@@ -89,6 +103,42 @@ void SolidificationCreep::factors(double tPrev, double t, StepFactors& f) const
         sumL += f.A1mL[i];
     }
     f.invEpp = p_.q1 + f.invV * sumL + p_.q4 * f.flowW;
+}
+
+void ThermalCreepParams::validate() const
+{
+    require(T0 > 0 && T0 <= TemperatureHistory::kMaxTemperature, "creepReferenceTemperature [K]", T0,
+            "0 < creepReferenceTemperature <= " + formatNumber(TemperatureHistory::kMaxTemperature) + " [K]");
+    requireNonNegative("creepUe [K]", Ue);
+    requireNonNegative("creepUr [K]", Ur);
+    requireNonNegative("creepUs [K]", Us);
+}
+
+ThermalCreepClocks::ThermalCreepClocks(const ThermalCreepParams& p, const TemperatureHistory& history)
+    : age_(checked(p, history), p.Ue, p.T0), reduced_(history, p.Ur, p.T0), flow_(history, p.Us, p.T0), h_(history)
+{
+}
+
+StepTimes ThermalCreepClocks::step(double tPrev, double t) const
+{
+    requirePositive("tPrev [day]", tPrev);
+    requireGreaterEqual("t [day]", t, "tPrev", tPrev);
+    StepTimes s;
+    s.tPrev = tPrev;
+    s.t = t;
+    s.agePrev = age_.at(tPrev);
+    s.age = age_.at(t);
+    s.reducedDt = reduced_.integral(tPrev, t);
+    s.flowPrev = flow_.at(tPrev);
+    s.flow = flow_.at(t);
+    const double dFlow = flow_.integral(tPrev, t);
+    if (dFlow > 0) {
+        s.flowRatio = s.reducedDt / dFlow;
+    } else if (!h_.empty()) {  // an instantaneous step has no flow; its ratio is the rates' at t
+        const double T = h_.at(t);
+        s.flowRatio = reduced_.factor(T) / flow_.factor(T);
+    }
+    return s;
 }
 
 double SolidificationCreep::inelasticStrainIncrement(const StepFactors& f, double sigmaPrev,

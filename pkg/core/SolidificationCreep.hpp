@@ -12,10 +12,26 @@
 // Shared, per-step factors (StepFactors) are computed once per material and step; the per-contact
 // work is inelasticStrainIncrement() and commit() on the contact's hidden array gamma[size()].
 // Units: days, Pa, 1/Pa; strains dimensionless.
+//
+// Creep at temperature (ThermalCreepParams, ThermalCreepClocks): the temperature form of the
+// microprestress-solidification (MPS) theory (Bazant, Cedolin & Cusatis, J. Eng. Mech. 130(6),
+// 2004; as reformulated by Jirasek & Havlasek, Cem. Concr. Res. 60, 2014), without its transient
+// thermal creep term. Three Arrhenius clocks, dt_x/dt = exp[U_x (1/T0 - 1/T)]:
+//   t_e (U_e, hydration):  the solidified volume ages in t_e,            1/v(t_e);
+//   t_r (U_r, viscous):    the Kelvin units run in t_r,                  tau_mu dgamma_mu/dt_r + gamma_mu = A_mu sigma;
+//   t_s (U_s, microprestress relaxation): the flow viscosity eta = t_s/q4, and the flow runs in t_r:
+//                          deps_f/dt = psi_r sigma / eta = q4 sigma psi_r / t_s.
+// At a constant T from t = 0 (t_x = psi_x t) this is the reference-temperature law in transformed
+// variables: J_T(t, t') = q1 + rho^(-m) q2 Q(psi_r t, psi_r t') + q3 ln(1 + (psi_r (t - t')/lambda0)^n)
+//   + q4 (psi_r/psi_s) ln(t/t'), rho = psi_e/psi_r.
+// Over a step, StepTimes carries the clocks at its ends: t* from t_e, beta_mu and lambda_mu from
+// the increment of t_r, and the flow term from t_s times the step's psi_r/psi_s (Delta t_r / Delta
+// t_s): exact at a constant temperature, stress taken linear in t_s under a varying one.
 #pragma once
 
 #include "core/B3Compliance.hpp"
 #include "core/KelvinChain.hpp"
+#include "core/TemperatureHistory.hpp"
 
 #include <cstddef>
 #include <vector>
@@ -28,12 +44,54 @@ enum class InteriorTime {
     Arithmetic  ///< t* = (tPrev + t)/2
 };
 
+/// Creep at temperature (see the top of this file); defaults: the activation energies of the MPS
+/// theory as OOFEM's material library documents them (Q_e/R = 2700 K, Q_r/R = 5000 K,
+/// Q_s/R = 3000 K), the B3 q's taken at 20 C.
+struct ThermalCreepParams {
+    bool on = true;          ///< creep sees the temperature history (false: only the swelling kinetics do)
+    double T0 = 293.15;      ///< temperature at which the B3 q's hold [K], 0 < T0 <= 373.15
+    double Ue = 2700.0;      ///< activation energy / R of hydration (equivalent age) [K], >= 0
+    double Ur = 5000.0;      ///< of the viscous processes (Kelvin units, flow rate) [K], >= 0
+    double Us = 3000.0;      ///< of microprestress relaxation (flow viscosity) [K], >= 0
+    /// Throws std::invalid_argument naming the first value out of range.
+    void validate() const;
+};
+
+/// The times of one physical step [tPrev, t] as the creep law sees them [day]; identity() is the
+/// reference temperature (all clocks the physical time).
+struct StepTimes {
+    double tPrev = 0, t = 0;        ///< physical step ends
+    double agePrev = 0, age = 0;    ///< equivalent age t_e at both ends (1/v, t*)
+    double reducedDt = 0;           ///< increment of t_r (the Kelvin units' time)
+    double flowPrev = 0, flow = 0;  ///< t_s at both ends (the flow's logarithm)
+    double flowRatio = 1;           ///< psi_r/psi_s over the step, Delta t_r / Delta t_s [-]
+    static StepTimes identity(double tPrev, double t)
+    {
+        return StepTimes{tPrev, t, tPrev, t, t - tPrev, tPrev, t, 1.0};
+    }
+};
+
+/// The three MPS clocks of a kind under a temperature history.
+class ThermalCreepClocks {
+public:
+    ThermalCreepClocks(const ThermalCreepParams& p, const TemperatureHistory& history);
+    /// StepTimes of [tPrev, t]; 0 < tPrev <= t [day]. A function of (tPrev, t) alone.
+    StepTimes step(double tPrev, double t) const;
+    const ArrheniusTime& equivalentAge() const { return age_; }
+    const ArrheniusTime& reducedTime() const { return reduced_; }
+    const ArrheniusTime& flowTime() const { return flow_; }
+
+private:
+    ArrheniusTime age_, reduced_, flow_;
+    TemperatureHistory h_;
+};
+
 /// Factors of one physical step shared by all contacts of one material.
 struct StepFactors {
     double tPrev = 0;     ///< step start [day]
     double t = 0;         ///< step end [day]
     double dt = 0;        ///< t - tPrev [day]
-    double tStar = 0;     ///< interior time [day]
+    double tStar = 0;     ///< interior time (of the equivalent age at temperature) [day]
     double invV = 0;      ///< 1/v(t*) [-]
     double flowLog = 0;   ///< ln(t/tPrev) [-]
     double flowW = 0;     ///< w = 1 - (tPrev/dt) ln(t/tPrev) [-], share of dsigma in the flow
@@ -68,6 +126,9 @@ public:
     StepFactors factors(double tPrev, double t) const;
     /// Same, into an existing object (reuses its vectors, no allocation after the first call).
     void factors(double tPrev, double t, StepFactors& out) const;
+    /// Same under temperature (ThermalCreepClocks::step); StepTimes::identity(tPrev, t) gives
+    /// factors(tPrev, t) bit for bit.
+    void factors(const StepTimes& s, StepFactors& out) const;
 
     /// Inelastic strain increment deps'' of the step, constant during its iterations [-].
     /// sigmaPrev: committed stress [Pa]; gamma: the contact's hidden array [f.size()].

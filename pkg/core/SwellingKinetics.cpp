@@ -91,6 +91,16 @@ double SwellingKinetics::rate(double xi, double T) const
     return (1.0 - xi) * (xi + c) / (tc * (1.0 + c));
 }
 
+double SwellingKinetics::advance(double xi, double h, double T) const
+{
+    const double tc = tauC(T);  // validates T
+    const double c = std::exp(-tauL(T) / tc);
+    const double E = std::exp(-h / tc);
+    const double oneMinusE = -std::expm1(-h / tc);
+    // (xi' + c)/(1 - xi') = e^(h/tc) (xi + c)/(1 - xi), solved for xi'
+    return std::min((xi * (1.0 + c * E) + c * oneMinusE) / ((1.0 - xi) * E + xi + c), 1.0);
+}
+
 double SwellingKinetics::integrate(double xi0, double t0, double t1, const std::function<double(double)>& T,
                                    int substeps) const
 {
@@ -105,41 +115,58 @@ double SwellingKinetics::integrate(double xi0, double t0, double t1, const std::
     }
     const double h = (t1 - t0) / ns;
     double x = xi0;
-    for (int i = 0; i < ns; ++i) {
-        const double tm = t0 + (i + 0.5) * h;
-        const double Tm = T(tm);
-        const double tc = tauC(Tm);  // validates Tm
-        const double c = std::exp(-tauL(Tm) / tc);
-        const double E = std::exp(-h / tc);
-        const double oneMinusE = -std::expm1(-h / tc);
-        // exact solution over h: xi' = (xi (1 + c E) + c (1 - E)) / ((1 - xi) E + xi + c)
-        x = (x * (1.0 + c * E) + c * oneMinusE) / ((1.0 - x) * E + x + c);
-        x = std::min(x, 1.0);
-    }
+    for (int i = 0; i < ns; ++i) x = advance(x, h, T(t0 + (i + 0.5) * h));
     return x;
 }
 
 double SwellingKinetics::integrate(double xi0, double t0, double t1, const std::vector<double>& times,
                                    const std::vector<double>& temperatures, int substeps) const
 {
-    require(!times.empty() && times.size() == temperatures.size(), "temperature table size",
-            static_cast<double>(times.size()),
-            "same non-zero length as the temperatures (" + std::to_string(temperatures.size()) + ")");
-    for (std::size_t i = 0; i < times.size(); ++i) {
-        requirePositive("temperature[" + std::to_string(i) + "] [K]", temperatures[i]);
-        if (i > 0)
-            requireGreater("time[" + std::to_string(i) + "] [day]", times[i],
-                           "time[" + std::to_string(i - 1) + "]", times[i - 1]);
+    require(!times.empty(), "len(temperatureDays)", 0.0, ">= 1 (a history)");
+    const TemperatureHistory h(times, temperatures);
+    return integrate(xi0, t0, t1, [&](double t) { return h.at(t); }, substeps);
+}
+
+SwellingHistory::SwellingHistory(const SwellingKinetics& kinetics, const TemperatureHistory& history)
+    : k_(kinetics), h_(history)
+{
+    require(!h_.empty(), "len(temperatureDays)", 0.0, ">= 1 (a history)");
+    if (h_.isConstant()) return;
+    const auto& d = h_.days();
+    const auto& T = h_.temperatures();
+    nodes_.push_back(0.0);
+    if (d.front() > 0) nodes_.push_back(d.front());
+    for (std::size_t j = 0; j + 1 < d.size(); ++j) {
+        const int n = std::max(1, static_cast<int>(std::ceil(std::fabs(T[j + 1] - T[j]) / kSubstepKelvin)));
+        for (int i = 1; i < n; ++i) nodes_.push_back(d[j] + (d[j + 1] - d[j]) * i / n);
+        nodes_.push_back(d[j + 1]);
     }
-    auto T = [&](double t) {
-        if (t <= times.front()) return temperatures.front();
-        if (t >= times.back()) return temperatures.back();
-        const auto it = std::upper_bound(times.begin(), times.end(), t);
-        const std::size_t j = static_cast<std::size_t>(it - times.begin());
-        const double a = (t - times[j - 1]) / (times[j] - times[j - 1]);
-        return temperatures[j - 1] + a * (temperatures[j] - temperatures[j - 1]);
-    };
-    return integrate(xi0, t0, t1, T, substeps);
+}
+
+double SwellingHistory::xi(double t)
+{
+    requireNonNegative("t [day]", t);
+    if (h_.isConstant()) return k_.xiAt(t, h_.temperatures().front());
+    const std::size_t k = static_cast<std::size_t>(std::upper_bound(nodes_.begin(), nodes_.end(), t) - nodes_.begin()) - 1;
+    if (k < node_) {
+        node_ = 0;
+        xiNode_ = 0;
+    }
+    for (; node_ < k; ++node_) {
+        const double a = nodes_[node_], b = nodes_[node_ + 1];
+        xiNode_ = k_.advance(xiNode_, b - a, h_.at(0.5 * (a + b)));
+    }
+    const double a = nodes_[k];
+    return t > a ? k_.advance(xiNode_, t - a, h_.at(0.5 * (a + t))) : xiNode_;
+}
+
+double SwellingHistory::increment(double t1, double t2)
+{
+    requireNonNegative("t1 [day]", t1);
+    requireGreaterEqual("t2 [day]", t2, "t1", t1);
+    if (h_.isConstant()) return k_.incrementAt(t1, t2, h_.temperatures().front());
+    const double x1 = xi(t1);
+    return xi(t2) - x1;
 }
 
 }  // namespace swelldem::core

@@ -7,6 +7,9 @@
 // Times in days, temperatures in K. tau_c, tau_L are the values at the reference temperature T0.
 #pragma once
 
+#include "core/TemperatureHistory.hpp"
+
+#include <cstddef>
 #include <functional>
 #include <vector>
 
@@ -46,16 +49,47 @@ public:
     /// ceil(20 (t1 - t0) / tau_c(T0)) (at least 1, at most 1e6).
     double integrate(double xi0, double t0, double t1, const std::function<double(double)>& T,
                      int substeps = 0) const;
-    /// Same with a piecewise-linear history (times [day] increasing, temperatures [K]; held
-    /// constant outside the table).
+    /// Same with a piecewise-linear history (TemperatureHistory: days increasing, temperatures
+    /// [K], held constant outside the table).
     double integrate(double xi0, double t0, double t1, const std::vector<double>& times,
                      const std::vector<double>& temperatures, int substeps = 0) const;
+    /// The exact solution of the ODE over a duration h [day] at the constant temperature T [K],
+    /// from xi: (xi + c)/(1 - xi) grows by e^(h/tau_c(T)), c = e^(-tau_L(T)/tau_c(T)).
+    double advance(double xi, double h, double T) const;
 
 private:
     static double logistic(double z);
     double xiClosed(double t, double tc, double tl) const;
     double incrementClosed(double t1, double t2, double tc, double tl) const;
     double tauC_, tauL_, T0_, Uc_, UL_;
+};
+
+/// Larive's xi(t) under a temperature history, as a function of t alone: the same value whatever
+/// the order of the calls (a reloaded run continues bit-identically).
+///  * constant history: the closed form at that temperature (increment without cancellation);
+///  * varying history: the ODE integrated on a fixed grid of substeps from t = 0, each solved
+///    exactly at the temperature of its mid-point (SwellingKinetics::advance): every linear piece
+///    of the history is cut into substeps of at most kSubstepKelvin, constant pieces into one;
+///    xi(t) continues from the last grid node before t. The grid's last node reached is cached.
+class SwellingHistory {
+public:
+    /// Largest temperature change over one substep [K]; the midpoint rule's error is of second
+    /// order in it (tests/core/test_Temperature.cpp measures it against an RK4 of the ODE).
+    static constexpr double kSubstepKelvin = 0.1;
+
+    /// The history must not be empty.
+    SwellingHistory(const SwellingKinetics& kinetics, const TemperatureHistory& history);
+    /// xi(t), t >= 0 [day].
+    double xi(double t);
+    /// xi(t2) - xi(t1), 0 <= t1 <= t2 [day].
+    double increment(double t1, double t2);
+
+private:
+    SwellingKinetics k_;
+    TemperatureHistory h_;
+    std::vector<double> nodes_;  // 0, then the substep ends up to the last day of the history
+    std::size_t node_ = 0;       // last node reached
+    double xiNode_ = 0;          // xi there
 };
 
 }  // namespace swelldem::core

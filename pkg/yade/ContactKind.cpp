@@ -122,6 +122,20 @@ ContactKind::evaluateHistory(const std::vector<Real>& times, const std::vector<R
 	return F;
 }
 
+void ContactKind::setTemperatureHistory(const std::vector<Real>& days, const std::vector<Real>& temperatures)
+{
+	std::vector<double> oldDays = table.temperatureDays, oldTemps = table.temperatures;
+	table.temperatureDays       = std::vector<double>(days.begin(), days.end());
+	table.temperatures          = std::vector<double>(temperatures.begin(), temperatures.end());
+	try {
+		postLoad();
+	} catch (const std::exception& e) {
+		table.temperatureDays = std::move(oldDays);
+		table.temperatures    = std::move(oldTemps);
+		throw std::invalid_argument(string("ContactKind.setTemperatureHistory refused, the old history kept: ") + e.what());
+	}
+}
+
 int ContactKind::chainSize() { return law().creep() ? int(law().creep()->size()) : 0; }
 
 } // namespace yade

@@ -40,8 +40,8 @@ public:
 	X(Real, stepEnd, 0.0, swelldem_attr::Internal, "End of the physical step the law has begun [day]")
 	SWELLDEM_CLASS_WITH_TABLE(ContactKind, Serializable,
 	                          "Parameters shared by all contacts of one kind (MORTAR, ITZ or AGG): stiffness, aging viscoelasticity (B3), "
-	                          "swelling kinetics (Larive) and brittle strength. A change to a parameter during a run takes effect "
-	                          "from the next physical step.",
+	                          "swelling kinetics (Larive), a temperature history (Arrhenius kinetics, creep at temperature) and brittle "
+	                          "strength. A change to a parameter during a run takes effect from the next physical step.",
 	                          SWELLDEM_CONTACT_KIND_ATTRS, SWELLDEM_KIND_PARAMETERS)
 	/// The per-kind parameters (all but behaviour), as the physics core takes them.
 	swelldem::core::ContactKindParams table;
@@ -62,6 +62,9 @@ public:
 		        "One contact of this kind alone, outside any scene: the physics core driven through physical times [day] "
 		        "with imposed normal openings [m] (one per time, times[0] the stress-free state), facet area [m2] and length [m]; "
 		        "returns the normal force [N] at each time (tension positive).");
+		cls.def("setTemperatureHistory", &ContactKind::setTemperatureHistory, (boost::python::arg("days"), boost::python::arg("temperatures")),
+		        "Sets temperatureDays [day] and temperatures [K] together (a history of another length cannot be set one "
+		        "attribute at a time), validated; a refused history leaves the old one.");
 	}
 
 	/// The parameters with the behaviour, validated; the error names this kind.
@@ -78,6 +81,7 @@ public:
 	Real              compliance(Real t, Real tPrime) const;
 	Real              modulus(Real t) const;
 	int               chainSize();
+	void              setTemperatureHistory(const std::vector<Real>& days, const std::vector<Real>& temperatures);
 	std::vector<Real> evaluateHistory(const std::vector<Real>& times, const std::vector<Real>& openings, Real area, Real length, Real swellDispInf) const;
 
 private:

@@ -45,10 +45,11 @@ PARAMETERS = ("paper-micro", "macro")
 _bad = options.bad
 
 
-def _field(default, help, unit=None, flag=None, choices=None, sets=None, factory=None):
+def _field(default, help, unit=None, flag=None, choices=None, sets=None, factory=None, type=None):
     """A SwellingTest field with its help text, unit, command-line flag (default --the-name),
-    choices and the plugin attribute it sets (whose constructor validates it)."""
-    meta = {"help": help, "unit": unit, "flag": flag, "choices": choices, "sets": sets}
+    choices, the plugin attribute it sets (whose constructor validates it) and the type of its
+    command-line value (default: the default's type; needed when the default is None)."""
+    meta = {"help": help, "unit": unit, "flag": flag, "choices": choices, "sets": sets, "type": type}
     return field(default_factory=factory, metadata=meta) if factory else field(default=default, metadata=meta)
 
 
@@ -69,6 +70,12 @@ class SwellingTest:
                               sets="solver.tolerance")
     t_start_days: float = _field(1.0, "age of the stress-free start", unit="day", flag="--t-start", sets="solver.tStart")
     t_end_days: float = _field(0.0, "last time (0: the paper's, 3650 ISR / 50000 ASR)", unit="day", flag="--t-end", sets="solver.tEnd")
+    temperature_c: float = _field(None, "constant temperature of every kind (none: each kind at its reference temperatures, "
+                                        "the kinetics' referenceTemperature and creep's creepReferenceTemperature, 20 C)",
+                                  unit="C", type=float, sets="ContactKind.temperatureDays, temperatures")
+    temperature_csv: str = _field("", "temperature history of every kind, a file of rows 'day, deg C' (days >= 0 strictly "
+                                      "increasing, linear in between, held before the first and after the last; '#' starts "
+                                      "a comment)", sets="ContactKind.temperatureDays, temperatures")
     eps_inf: float = _field(paper.EPS_INF, "ultimate free swelling strain of the swelling material (d_inf = eps_inf x 2 R_mean)", unit="-")
     gel_fraction: float = _field(0.1, "asr-coarse: share of the aggregate contacts that swell (gel pockets)", unit="-")
     shear_ratio: float = _field(0.3, "ks / kn of every contact", unit="-", sets="ContactKind.shearRatio")
@@ -141,6 +148,7 @@ class SwellingTest:
         options.integer("rebar_bars", self.rebar_bars, lo=1)
         options.number("rebar_young", self.rebar_young, lo=0, unit="Pa")
         options.number("rebar_yield_stress", self.rebar_yield_stress, lo=0, unit="Pa")
+        self.temperature_history()  # the temperature options, the CSV file read and checked
         # the mesostructure generator's own checks (a specimen too small for the sieve fractions, an
         # aggregate fraction it cannot place, ...), run here so that they too come before any work
         from .meso import MesoParameters
@@ -163,10 +171,66 @@ class SwellingTest:
                 elif isinstance(value, str) and value.strip().lower().lstrip("+-") in ("nan", "inf", "infinity"):
                     _bad(f"{name}.{attr}", value, "a finite number")
 
+    def temperature_history(self):
+        """(days [day], temperatures [K]) of temperature_c or temperature_csv, None without either;
+        OptionError (the one message form) for a value out of range, both options given, or a
+        CSV file that is missing, unreadable, has a malformed row or days not increasing."""
+        if self.temperature_c is not None:
+            options.number("temperature_c", self.temperature_c, lo=T_MIN_C, hi=T_MAX_C, hi_incl=True,
+                           allowed=f"{T_MIN_C:g} < temperature_c <= {T_MAX_C:g} [C] (above 0 K, at most 100 C)")
+            if self.temperature_csv != "":
+                _bad("temperature_csv", self.temperature_csv, "'' when temperature_c is given (one of the two)")
+            return [0.0], [self.temperature_c + KELVIN]
+        if not isinstance(self.temperature_csv, str):
+            _bad("temperature_csv", self.temperature_csv, "a file name, or '' for none")
+        if not self.temperature_csv:
+            return None
+        days, celsius = read_temperature_csv(self.temperature_csv)
+        return days, [c + KELVIN for c in celsius]
+
     @property
     def t_end(self):
         """The last physical time [day]: t_end_days, or the paper's end of the scenario's kinetics."""
         return self.t_end_days or paper.KINETICS[paper.SCENARIOS[self.scenario]["kinetics"]][2]
+
+
+#: Temperatures the scenarios take [C]: above 0 K and at most 100 C (ContactKind's 0 < T <= 373.15 K).
+T_MIN_C, T_MAX_C, KELVIN = -273.15, 100.0, 273.15
+
+
+def read_temperature_csv(path):
+    """(days [day], temperatures [C]) of a temperature history file: one row 'day, deg C' per line,
+    blank lines and '#' comments skipped; at least one row, days >= 0 and strictly increasing,
+    T_MIN_C < T <= T_MAX_C. OptionError naming the file or the line otherwise."""
+    try:
+        with open(path, encoding="utf-8") as f:
+            lines = f.read().splitlines()
+    except (OSError, UnicodeDecodeError) as e:
+        _bad("temperature_csv", path, f"a readable text file of rows 'day, deg C' ({getattr(e, 'strerror', None) or e})")
+    days, celsius = [], []
+    for n, line in enumerate(lines, 1):
+        text = line.split("#", 1)[0].strip()
+        if not text:
+            continue
+        cells = text.split(",")
+        try:
+            if len(cells) != 2:
+                raise ValueError(text)
+            day, temp = float(cells[0]), float(cells[1])
+        except ValueError:
+            _bad(f"temperature_csv line {n}", line, "two numbers 'day, deg C'")
+        if days:
+            options.number(f"temperature_csv day (line {n})", day, lo=days[-1], unit="day",
+                           allowed=f"day > {days[-1]:g}, the previous row's (days strictly increasing) [day]")
+        else:
+            options.number(f"temperature_csv day (line {n})", day, lo=0, lo_incl=True, unit="day")
+        options.number(f"temperature_csv temperature (line {n})", temp, lo=T_MIN_C, hi=T_MAX_C, hi_incl=True,
+                       allowed=f"{T_MIN_C:g} < T <= {T_MAX_C:g} [C] (above 0 K, at most 100 C)")
+        days.append(day)
+        celsius.append(temp)
+    if not days:
+        _bad("temperature_csv", path, "a file with at least one row 'day, deg C'")
+    return days, celsius
 
 
 def parse_kind_param(text):
@@ -203,7 +267,7 @@ def add_arguments(parser):
         elif isinstance(default, dict):
             parser.add_argument(flag, dest=f.name, action="append", default=[], metavar="KIND.ATTR=VALUE", help=help_text)
         else:
-            parser.add_argument(flag, dest=f.name, type=type(default), default=default, choices=m["choices"],
+            parser.add_argument(flag, dest=f.name, type=m["type"] or type(default), default=default, choices=m["choices"],
                                 help=help_text + f" (default {default})")
 
 
@@ -323,17 +387,19 @@ def make_kinds(test):
     swellDispInf 0 here: it depends on the mesostructure (set_swelling)."""
     dem = _dem()
     sc = paper.SCENARIOS[test.scenario]
+    history = test.temperature_history()
+    temperature = {} if history is None else {"temperatureDays": history[0], "temperatures": history[1]}
     kinds = {}
     for name in paper.KIND_NAMES:
         swells = name in sc["swelling_kinds"] or (test.scenario == "asr-coarse" and name == "AGG")
         common = dict(shear_ratio=test.shear_ratio, kinetics=sc["kinetics"], damage=test.damage,
                       tensile_strength=paper.TENSILE_STRENGTH[name] * test.strength_scale, swelling=swells)
+        given = {**temperature, **test.kind_params.get(name, {})}
         if name == "AGG":
-            kinds[name] = dem.contact_kind(name, behaviour="elastic", young=test.aggregate_young, **common,
-                                           **test.kind_params.get(name, {}))
+            kinds[name] = dem.contact_kind(name, behaviour="elastic", young=test.aggregate_young, **common, **given)
         else:
             behaviour = "viscoelastic" if test.behaviour == "viscoelastic" else "aging-elastic"
-            extra = {"kelvinUnitsPerDecade": test.kelvin_units_per_decade, **test.kind_params.get(name, {})}
+            extra = {"kelvinUnitsPerDecade": test.kelvin_units_per_decade, **given}
             kinds[name] = dem.contact_kind(name, behaviour=behaviour, b3=paper.B3_OF_KIND[name], **common, **extra)
     return kinds
 
@@ -357,6 +423,19 @@ def set_swelling(test, kinds, d_inf):
     for name in paper.SCENARIOS[test.scenario]["swelling_kinds"]:
         if "swellDispInf" not in test.kind_params.get(name, {}):
             kinds[name].swellDispInf = d_inf
+
+
+def temperature_record(test, kinds):
+    """The temperature history of a run as results.json records it: its source, and per kind the
+    days [day] and temperatures [K] it holds (empty: none, the kind at its reference
+    temperatures, also recorded) and whether its creep follows them."""
+    source = ("temperature_c" if test.temperature_c is not None else
+              test.temperature_csv if test.temperature_csv else "none: each kind at its reference temperatures")
+    return {"source": source, "per_kind": {
+        name: {"days": list(k.temperatureDays), "temperatures_K": list(k.temperatures),
+               "temperatures_C": [T - KELVIN for T in k.temperatures], "referenceTemperature_K": k.referenceTemperature,
+               "thermalCreep": k.thermalCreep, "creepReferenceTemperature_K": k.creepReferenceTemperature}
+        for name, k in kinds.items()}}
 
 
 class Interrupted(Exception):
@@ -470,6 +549,7 @@ def run(test, prepared=None, extra_times=(), after_step=None):
            "swelling_strain_y": [], "swelling_strain_area": [], "platen_stress_x_Pa": [], "platen_stress_y_Pa": [],
            "platen_disp_x_m": [], "platen_disp_y_m": [], "unbalanced_ratio": [], "adr_iterations_per_step": [], "step_at_round_off": [], "adr_iterations": 0,
            "per_kind": {n: {"fn_p05_kN": [], "fn_p95_kN": [], "broken": [], "born_broken": []} for n in paper.KIND_NAMES},
+           "temperature": temperature_record(test, kinds),
            "status": "running", "wall_s": 0.0, "yade_tags": batch_tags()}
     if bars is not None:
         res["rebar"] = {"ratio": lay.ratio, "n_bars": lay.n_bars, "y_m": list(lay.y_m), "thickness_m": lay.thickness_m,

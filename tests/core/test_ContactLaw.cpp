@@ -171,9 +171,11 @@ TEST(ContactLaw, ShearUsesTheSameCompliancePerUnitShearRatio)
 TEST(ContactLaw, TemperatureHistoryDrivesTheSwelling)
 {
     ContactKindParams p = mortarKind(Behaviour::Elastic, true);
-    ContactLaw hot(p), ref20(p);
-    hot.setTemperatureHistory({0.0, 1e6}, {313.15, 313.15});
-    ref20.setTemperatureHistory({0.0, 1e6}, {293.15, 293.15});
+    p.temperatureDays = {0.0, 1e6};
+    p.temperatures = {293.15, 293.15};
+    ContactLaw ref20(p);
+    p.temperatures = {313.15, 313.15};
+    ContactLaw hot(p);
     const auto times = logTimes(1, 3650, 10);
     double sumHot = 0, sum20 = 0;
     for (std::size_t i = 1; i < times.size(); ++i) {

@@ -3,6 +3,7 @@
 #include "core/B3Compliance.hpp"
 #include "core/BrittleContact.hpp"
 #include "core/ContactLaw.hpp"
+#include "core/ContactKindParams.hpp"
 #include "core/KelvinChain.hpp"
 #include "core/LogTimes.hpp"
 #include "core/SolidificationCreep.hpp"
@@ -139,9 +140,11 @@ TEST(Validation, SwellingKinetics)
     expectInvalid([&] { k.integrate(0, -1, 1, T); }, "t0 [day]", "-1", "0 <= t0");
     expectInvalid([&] { k.integrate(0, 2, 1, T); }, "t1 [day]", "1", ">= t0 = 2");
     expectInvalid([&] { k.integrate(0, 0, 1, [](double) { return -5.0; }); }, "T [K]", "-5", "0 < T");
-    expectInvalid([&] { k.integrate(0, 0, 1, {0.0, 1.0}, {300.0}); }, "temperature table size", "2", "same non-zero length");
-    expectInvalid([&] { k.integrate(0, 0, 1, {0.0, 1.0}, {300.0, 0.0}); }, "temperature[1] [K]", "0", "0 < temperature[1]");
-    expectInvalid([&] { k.integrate(0, 0, 1, {0.0, 0.0}, {300.0, 300.0}); }, "time[1] [day]", "0", "time[1] [day] > time[0] = 0");
+    expectInvalid([&] { k.integrate(0, 0, 1, {0.0, 1.0}, {300.0}); }, "len(temperatures)", "1", "len(temperatureDays) = 2");
+    expectInvalid([&] { k.integrate(0, 0, 1, {0.0, 1.0}, {300.0, 0.0}); }, "temperatures[1] [K]", "0",
+                  "0 < temperatures[1] <= 373.15 [K]");
+    expectInvalid([&] { k.integrate(0, 0, 1, {0.0, 0.0}, {300.0, 300.0}); }, "temperatureDays[1] [day]", "0",
+                  "temperatureDays[1] [day] > temperatureDays[0] = 0");
 }
 
 TEST(Validation, BrittleStrength)
@@ -202,7 +205,33 @@ TEST(Validation, ContactKindGeometryAndLaw)
     other.gamma.assign(law.hiddenStateSize() + 2, 0.0);
     expectInvalid([&] { law.beginContactStep(ContactGeometry{1e-3, 1e-3}, other); }, "hidden creep state size of a contact",
                   std::to_string(law.hiddenStateSize() + 2), "Kelvin chain changed");
-    expectInvalid([&] { law.setTemperatureHistory({0.0}, {-3.0}); }, "temperature[0] [K]", "-3", "0 < temperature[0]");
+}
+
+TEST(Validation, TemperatureHistoryAndThermalCreep)
+{
+    ContactKindParams p;
+    p.temperatureDays = {0.0, 10.0};
+    p.temperatures = {293.15, 400.0};
+    expectInvalid([&] { p.validate(); }, "temperatures[1] [K]", "400", "0 < temperatures[1] <= 373.15 [K]");
+    p.temperatures = {-1.0, 293.15};
+    expectInvalid([&] { p.validate(); }, "temperatures[0] [K]", "-1", "0 < temperatures[0] <= 373.15 [K]");
+    p.temperatures = {293.15, 293.15};
+    p.temperatureDays = {10.0, 5.0};
+    expectInvalid([&] { p.validate(); }, "temperatureDays[1] [day]", "5", "temperatureDays[1] [day] > temperatureDays[0] = 10");
+    p.temperatureDays = {-2.0, 5.0};
+    expectInvalid([&] { p.validate(); }, "temperatureDays[0] [day]", "-2", "0 <= temperatureDays[0] [day] < inf");
+    p.temperatureDays = {0.0, 5.0, 9.0};
+    expectInvalid([&] { p.validate(); }, "len(temperatures)", "2", "len(temperatureDays) = 3");
+    p.temperatureDays = {0.0, 5.0};
+    p.validate();  // a good history
+    p.behaviour = Behaviour::Viscoelastic;
+    p.thermal.T0 = 0;
+    expectInvalid([&] { p.validate(); }, "creepReferenceTemperature [K]", "0", "0 < creepReferenceTemperature <= 373.15 [K]");
+    p.thermal.T0 = 293.15;
+    p.thermal.Ur = -5;
+    expectInvalid([&] { p.validate(); }, "creepUr [K]", "-5", "0 <= creepUr [K] < inf");
+    p.thermal.on = false;  // switched off, its values are not used
+    p.validate();
 }
 
 TEST(Validation, LogTimes)
