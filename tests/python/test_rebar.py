@@ -95,12 +95,14 @@ sys.path.insert(0, {py!r})
 from swelldem import scenario, paper
 import numpy as np
 t = scenario.SwellingTest(scenario="isr", behaviour="elastic", damage=False, size_mm=(16, 16), seed=2, steps_per_decade=2,
-                          solver="implicit", rebar_ratio=0.01, out="run")
+                          solver="implicit", rebar_ratio=0.01, temperature_c=38.0, out="run")
 res = scenario.run(t)
+ip2 = [e for e in O.engines if e.label == "iloop"][0].physDispatcher.functors[0]
 steel = [i for i in O.interactions if i.isReal and i.phys.kindId == paper.STRUCTURE_KIND_IDS["STEEL"]]
 dump({{"fn": [i.phys.Fn for i in steel], "area": [i.phys.area for i in steel], "reported": res["rebar_stress_max_Pa"][-1],
       "thickness": res["rebar"]["thickness_m"], "bond": res["rebar"]["n_bond_contacts"],
-      "bond_seen": sum(1 for i in O.interactions if i.isReal and i.phys.kindId == paper.STRUCTURE_KIND_IDS["BOND"])}})
+      "bond_seen": sum(1 for i in O.interactions if i.isReal and i.phys.kindId == paper.STRUCTURE_KIND_IDS["BOND"]),
+      "temperatures": {{n: list(getattr(ip2, n).temperatures) for n in ("itz", "bond")}}}})
 """
 
 
@@ -110,6 +112,8 @@ def test_bar_stress_is_the_bar_force_over_its_section(yade_run):
     assert np.allclose(r["area"], section)
     assert r["reported"] == pytest.approx(max(r["fn"]) / section, rel=1e-12)
     assert r["bond"] > 0 and r["bond_seen"] == r["bond"]
+    # the bond is at the concrete's temperature (--temperature-c 38: 311.15 K)
+    assert r["temperatures"]["bond"] == r["temperatures"]["itz"] == [38.0 + 273.15]
 
 
 @pytest.mark.parametrize("args,text", [(["--rebar-ratio", "0.5"], "rebar_ratio = 0.5"), (["--rebar-ratio", "nan"], "rebar_ratio = nan"),

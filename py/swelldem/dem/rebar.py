@@ -12,8 +12,8 @@ them off the bars). Its steel (ConcreteMat.steel) makes three contact kinds:
   (Bars.yield_day), not modelled.
 - BOND between each remaining disc that faces the bar (within 1.5 Rmax of it and not hidden behind
   another disc, as for a platen) and the nearest bar disc, whatever the gap the carving left, as
-  the concrete cast around a bar fills it: the mortar-steel interface, with the ITZ kind's creep, stiffness and strength and no
-  swelling of its own (the ITZ of the paper is the mortar's interface with an inclusion), breaking
+  the concrete cast around a bar fills it: the mortar-steel interface, with the ITZ kind's creep
+  (and temperature), stiffness and strength and no swelling of its own (the ITZ of the paper is the mortar's interface with an inclusion), breaking
   as the ITZ does.
 - PLATEN where a bar's end touches a platen (swelldem.dem.platens).
 The reinforcement ratio rho is the steel area over the specimen's cross-section: rho = n t_b / H
@@ -119,7 +119,11 @@ def add_bars(assembly, yscene, lay, itz_kind):
     k = itz_kind
     ip2.bond = contact_kind(BOND, behaviour=k.behaviour, young=k.young, shear_ratio=k.shearRatio, damage=k.damage,
                             tensile_strength=k.tensileStrength, q1=k.q1, q2=k.q2, q3=k.q3, q4=k.q4,
-                            kelvinUnitsPerDecade=k.kelvinUnitsPerDecade, residualFrictionAngle=k.residualFrictionAngle)
+                            kelvinUnitsPerDecade=k.kelvinUnitsPerDecade, residualFrictionAngle=k.residualFrictionAngle,
+                            # the ITZ's temperature, for creep at temperature (docs/temperature.md)
+                            temperatureDays=list(k.temperatureDays), temperatures=list(k.temperatures), thermalCreep=k.thermalCreep,
+                            creepReferenceTemperature=k.creepReferenceTemperature, creepUe=k.creepUe, creepUr=k.creepUr,
+                            creepUs=k.creepUs)
     mat = W.ConcreteMat(steel=True, young=lay.young, label="steel")
     O.materials.append(mat)
     rr = lay.radius_m
