@@ -39,7 +39,7 @@ def main(argv):
     bad = [o["scenario"] for o in others if o["scenario"] != ref["scenario"]]
     if bad:
         sys.exit(f"compare_runs.py: runs of scenario {bad} cannot be compared with a {ref['scenario']} reference")
-    rows = report.compare(ref, others)
+    rows = report.compare(ref, others, names=[os.path.basename(os.path.normpath(d)) for d in [a.reference] + a.runs])
     os.makedirs(a.out, exist_ok=True)
     with open(os.path.join(a.out, "compare.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))

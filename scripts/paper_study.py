@@ -198,7 +198,8 @@ def report_study(a):
         if ref is None:
             lines += [f"(no {sc}-el-nodmg run: no reference)", ""]
             continue
-        rows = report.compare(ref, others)
+        rows = report.compare(ref, others, names=[f"{sc}-el-nodmg"] + [f"{sc}-{k}" for k in ("ve-nodmg", "el-dmg", "ve-dmg")
+                                                                         if f"{sc}-{k}" in runs])
         csv_rows += rows
         lines += report.compare_md(rows, f"{sc}-el-nodmg", ref)[2:] + [""]
     tables = "\n".join(lines)

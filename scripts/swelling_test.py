@@ -3,7 +3,9 @@
 
   scripts/yade-swelldem -n -x scripts/swelling_test.py --scenario isr|asr-fine|asr-coarse \
       --behaviour elastic|viscoelastic [--no-damage] [--size-mm W H] [--seed S] \
-      [--steps-per-decade N] [--tolerance TOL] [--kind-param MORTAR.tensileStrength=5e6 ...] --out DIR
+      [--steps-per-decade N] [--tolerance TOL] [--kind-param MORTAR.tensileStrength=5e6 ...] \
+      [--temperature-c T | --temperature-csv FILE] [--boundary-x free|fixed|stress:S|spring:K] \
+      [--boundary-y ...] [--rebar-ratio R] --out DIR
 
 writes DIR/results.json, DIR/table.md, DIR/table.csv, DIR/*.png (swelling strain, unbalanced force,
 force quantiles, crack map) and DIR/vtk/ (ParaView: particles and contacts .vtp files of the last step,

@@ -553,12 +553,13 @@ def paper_variation(reference, res):
     return {k: v[:2] for k, v in VARIATION[table][ref[0]].items()} if table else None
 
 
-def compare(reference, others):
+def compare(reference, others, names=None):
     """Rows of the paper's Table 3.7: each run's final 5 %/95 % quantiles and broken contacts per
     kind, with the variation in percent against the reference run, (value - ref) / ref as the
     paper computes it (a compressive quantile that shrinks varies by a negative percentage), and
     the paper's values and variations where the paper has the run ('paper_*'; None elsewhere).
-    Each row says how its run ended ('run', run_state) and the time of its last step [day]."""
+    Each row says how its run ended ('run', run_state) and the time of its last step [day];
+    names: one name per run, reference first (e.g. its folder), kept as 'name'."""
     ref_rows = {r["kind"]: r for r in final_rows(reference)}
     table = []
     for n, res in enumerate([reference] + list(others)):
@@ -578,7 +579,7 @@ def compare(reference, others):
                           "paper_fn_p05_kN": pv.get("p05"), "paper_var_p05_pct": pvar[0],
                           "paper_fn_p95_kN": pv.get("p95"), "paper_var_p95_pct": pvar[1],
                           "paper_broken": pv.get("broken"), "paper_broken_pct": pv.get("broken_pct"),
-                          "run": state, "t_last_days": t_last})
+                          "run": state, "t_last_days": t_last, "name": names[n] if names else ""})
     return table
 
 
@@ -587,16 +588,18 @@ def compare_md(rows, reference_name, reference):
     reference run is named under the table (its folder)."""
     fmt = lambda v: "-" if v is None or v != v else f"{round(v)}"  # NaN (no reference value) and None print as "-"
     scenario = reference["scenario"]
+    named = any(r.get("name") for r in rows)  # runs of the same behaviour and damage (a sweep) need their names
     lines = [f"# {LABEL.get(scenario, scenario)}: normal contact forces (kN) and variation to the reference (%)", "",
-             "| behaviour | damage | contact | 5 % | paper | var. % | paper | 95 % | paper | var. % | paper | broken (%) | paper | run |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "| behaviour | damage | contact | 5 % | paper | var. % | paper | 95 % | paper | var. % | paper | broken (%) | paper | run |"
+             + (" name |" if named else ""),
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|" + ("---|" if named else "")]
     for r in rows:
         mark = "" if r["run"] == "finished" else " †"
         paper_broken = "-" if r["paper_broken"] is None else f"{r['paper_broken']} ({r['paper_broken_pct']:.1f})"
         lines.append(f"| {r['behaviour']}{mark} | {'yes' if r['damage'] else 'no'} | {r['kind']} | {r['fn_p05_kN']:.2f} | "
                      f"{_f(r['paper_fn_p05_kN'], '{:.1f}')} | {fmt(r['var_p05_pct'])} | {fmt(r['paper_var_p05_pct'])} | "
                      f"{r['fn_p95_kN']:.2f} | {_f(r['paper_fn_p95_kN'], '{:.1f}')} | {fmt(r['var_p95_pct'])} | {fmt(r['paper_var_p95_pct'])} | "
-                     f"{r['broken']} ({r['broken_pct']:.1f}) | {paper_broken} | {r['run']} |")
+                     f"{r['broken']} ({r['broken_pct']:.1f}) | {paper_broken} | {r['run']} |" + (f" {r['name']} |" if named else ""))
     lines += ["", f"Reference: {reference_name} ({reference['behaviour']}, damage {'on' if reference['damage'] else 'off'}). "
               "Variation: (value - reference) / reference; '-' where the reference is below 0.05 kN in magnitude (the paper's 0.0) "
               "or the paper has no such run. "

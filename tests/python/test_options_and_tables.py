@@ -203,7 +203,9 @@ def test_compare_runs_marks_runs_that_did_not_finish(tmp_path):
     assert sum("unfinished (last update " in r for r in rows) == 3
     assert sum("failed: swelldem: AdrLogTimeIntegrator stopped" in r for r in rows) == 3
     assert "† not finished: the numbers are those of the run's last step done" in md
-    assert all(r.endswith("| finished |") for r in md.splitlines() if r.startswith("| elastic"))
+    assert all("| finished | ref |" in r for r in md.splitlines() if r.startswith("| elastic"))
+    # each row names its run (its folder): rows of runs of the same behaviour are told apart
+    assert sum(r.endswith("| dead |") for r in rows) == 3 and sum(r.endswith("| failed |") for r in rows) == 3
     csv_rows = list(__import__("csv").DictReader(open(tmp_path / "cmp" / "compare.csv")))
     assert [r["run"] for r in csv_rows].count("finished") == 3 and {r["t_last_days"] for r in csv_rows} == {"100.0"}
 

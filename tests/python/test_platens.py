@@ -154,3 +154,23 @@ def test_swelling_test_refuses_a_bad_boundary_before_any_work(tmp_path, value):
     assert proc.returncode == 2
     assert f"boundary_x = {value!r} is out of range; allowed:" in proc.stdout + proc.stderr
     assert not out.exists()  # nothing written: refused before the mesostructure
+
+
+def test_a_bad_spring_list_is_refused_with_the_list_and_the_bad_entry(yade_run):
+    r = yade_run(r"""
+s = yade.wrapper.AdrLogTimeIntegrator()
+out = {}
+for attr, value in (("springAxes", [0, 2]), ("springStiffness", [1e6, -1.0]), ("springBodies", [-3])):
+    try:
+        setattr(s, attr, value)
+        out[attr] = "accepted"
+    except ValueError as e:
+        out[attr] = str(e)
+out["kept"] = [list(s.springAxes), list(s.springStiffness), list(s.springBodies)]
+dump(out)
+""")
+    assert r["springAxes"].startswith("AdrLogTimeIntegrator.springAxes = [0, 2] refused, the old value [] kept")
+    assert "springAxes[1] = 2 is out of range; allowed: 0 (x) or 1 (y)" in r["springAxes"]
+    assert "springStiffness[1] [N/m] = -1 is out of range" in r["springStiffness"]
+    assert "springBodies[0] = -3 is out of range" in r["springBodies"]
+    assert r["kept"] == [[], [], []]

@@ -84,12 +84,20 @@ namespace swelldem_py {
 	template <class T> auto afterLoadImpl(T& t, int) -> decltype(t.afterLoad(), void()) { t.afterLoad(); }
 	template <class T> void afterLoadImpl(T&, long) { }
 	template <class T> void afterLoad(T& t) { afterLoadImpl(t, 0); }
+	template <class T> struct IsVector : std::false_type { };
+	template <class E, class A> struct IsVector<std::vector<E, A>> : std::true_type { };
 	template <class T> std::string shown(const T& v)
 	{
 		if constexpr (std::is_arithmetic_v<T> || std::is_same_v<T, std::string>) {
 			std::ostringstream s;
 			s << v;
 			return s.str();
+		} else if constexpr (IsVector<T>::value) {
+			// a list of numbers, as Python prints it (long ones cut: the message names the bad entry)
+			std::string out = "[";
+			for (size_t i = 0; i < v.size() && i < 8; ++i)
+				out += (i ? ", " : "") + shown(v[i]);
+			return out + (v.size() > 8 ? ", ...]" : "]");
 		} else
 			return "(the value given)";
 	}
