@@ -389,6 +389,11 @@ void LogTimeSolver::commitPhysicalStep()
 	if (verbose) progressLine();
 	if (step == nSteps()) {
 		finished = true;
+		if (verbose) {
+			std::printf("swelldem: finished: %d physical steps to t = %s d, %ld %s iterations, %.1f s\n", nSteps(), num(physTime).c_str(),
+			            totalIterations, iterationName, wallNow());
+			std::fflush(stdout);
+		}
 		zeroVelocities(scene);
 		scene->stopAtIter = scene->iter + 1;
 	} else {

@@ -50,6 +50,9 @@ def test_output_contract(isr_runs):
     last = len(res["times_days"]) - 1  # without --vtk-every, the last step only (tests/python/test_vtk_series.py: the fields)
     assert sorted(os.listdir(out / "vtk")) == ["contacts.pvd", f"contacts_{last:05d}.vtp", "particles.pvd", f"particles_{last:05d}.vtp"]
     assert "swelldem: step 1/" in proc.stdout and "left ~" in proc.stdout
+    # the total at the end: the steps, the solver's iterations (those results.json counts) and the wall time
+    n = len(res["times_days"])
+    assert f"swelldem: finished: {n} physical steps to t = 3650 d, {res['adr_iterations']} ADR iterations, " in proc.stdout
     assert all(u <= 1e-4 * 1.0000001 or u == 0 for u in res["unbalanced_ratio"])
     assert res["solver"] == "adr"
     assert res["calibration"]["run"] is False  # paper-micro does not use beta: no second simulation
