@@ -9,6 +9,7 @@ and has no field data, so ParaView would show nothing before a Glyph filter and 
 particles_<step>.vtp: one polygon cell per disc (a regular N-gon inscribed in the disc, in the
 plane z = 0); cell data:
   id [-] body id, radius [m], aggregateId [-] (-1 mortar, else the aggregate polygon's index),
+  steel [-] 1 for the discs of a reinforcing bar (swelldem.dem.rebar), else 0,
   displacement [m] (3 components, YADE's state.displ()).
 contacts_<step>.vtp: one line cell per real interaction, between the two disc centres (points: the
 centres of all bodies, point data id); cell data:
@@ -20,14 +21,14 @@ centres of all bodies, point data id); cell data:
   (the normal opening beyond its stress-free state; 0 when closed or intact).
 Platens (swelldem.dem.platens) and their contacts are left out; their stress is in results.json.
 Field data of both: TimeValue [day], step [-] (index into results.json's times_days) and the kind
-name table kindId_MORTAR = 0, kindId_ITZ = 1, kindId_AGG = 2 (VTK's ASCII XML has no portable
+name table kindId_MORTAR = 0, kindId_ITZ = 1, kindId_AGG = 2, kindId_PLATEN = 3, kindId_STEEL = 4, kindId_BOND = 5 (VTK's ASCII XML has no portable
 string array, and ParaView colours by integer arrays, e.g. with "Interpret Values As Categories").
 """
 import glob
 import math
 import os
 
-from ..paper import KIND_IDS
+from ..paper import KIND_IDS, STRUCTURE_KIND_IDS
 from ..plugin import require
 
 #: Sides of the polygon drawn for each disc.
@@ -52,7 +53,7 @@ def _field_data(time_days, step):
     arrays = [f'<Array type="Float64" Name="TimeValue" NumberOfTuples="1" format="ascii">{float(time_days)!r}</Array>',
               f'<Array type="Int32" Name="step" NumberOfTuples="1" format="ascii">{int(step)}</Array>']
     arrays += [f'<Array type="Int32" Name="kindId_{name}" NumberOfTuples="1" format="ascii">{k}</Array>'
-               for name, k in KIND_IDS.items()]
+               for name, k in {**KIND_IDS, **STRUCTURE_KIND_IDS}.items()]
     return "<FieldData>" + "".join(arrays) + "</FieldData>"
 
 
@@ -97,7 +98,7 @@ def particle_cells(sides=DISC_SIDES):
     yade, _ = _yade()
     O = yade.Omega()
     ring = [(math.cos(2 * math.pi * k / sides), math.sin(2 * math.pi * k / sides)) for k in range(sides)]
-    points, ids, radius, agg, displ = [], [], [], [], []
+    points, ids, radius, agg, steel, displ = [], [], [], [], [], []
     for b in O.bodies:
         if b is None or not _is_disc(b):
             continue
@@ -106,11 +107,12 @@ def particle_cells(sides=DISC_SIDES):
         ids.append(b.id)
         radius.append(r)
         agg.append(int(getattr(b.material, "aggregateId", -1)))
+        steel.append(int(bool(getattr(b.material, "steel", False))))
         displ += [float(v) for v in b.state.displ()]
     n = len(ids)
     connectivity = range(n * sides)
     offsets = [sides * (k + 1) for k in range(n)]
-    cells = [("id", "Int32", ids, 1), ("radius", "Float64", radius, 1), ("aggregateId", "Int32", agg, 1),
+    cells = [("id", "Int32", ids, 1), ("radius", "Float64", radius, 1), ("aggregateId", "Int32", agg, 1), ("steel", "Int32", steel, 1),
              ("displacement", "Float64", displ, 3)]
     return points, connectivity, offsets, cells
 
