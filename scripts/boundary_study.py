@@ -18,7 +18,6 @@ aggregates, the ITZ's own creep and cracking: it says whether the platen stress 
 size and time course, not more."""
 import argparse
 import csv
-import json
 import os
 import sys
 
@@ -106,21 +105,33 @@ def check(a):
 def run(a):
     tests = a.tests
     os.makedirs(a.out, exist_ok=True)
-    results = {}
-    for k, t in tests.items():
-        path = os.path.join(t.out, "results.json")
-        # resumable: a finished run, or one that failed (a loaded specimen that cracked through), is kept
-        if os.path.exists(path) and json.load(open(path)).get("status", "").split(":")[0] in ("finished", "failed"):
-            results[k] = json.load(open(path))
-            continue
-        print(f"boundary_study: {k}", flush=True)
-        try:
-            results[k] = scenario.run(t)
-        except Exception as e:  # noqa: BLE001 - a run that fails is reported, the others go on
-            print(f"boundary_study: {k} failed: {e}", flush=True)
-            results[k] = json.load(open(path))
+    # resumable; a loaded specimen that cracked through (failed) is kept as it is
+    results = scenario.run_all(tests, "boundary_study", keep_failed=True)
     single = {(sc, beh): single_contact_stress(tests[sc, beh, "restrained, no damage"]) for sc in SCENARIOS for beh in BEHAVIOURS}
     write(a.out, results, single)
+
+
+STRAINS = (("swelling_strain_x", "along x (loaded)"), ("swelling_strain_y", "across (y, free)"),
+           ("swelling_strain_area", "area (volumetric)"))
+
+
+def strain_figure(plt, path, curves, colors, title, ylabel):
+    """One row of three panels (strain along x, across, area, against time) per (scenario,
+    behaviour); curves: {(scenario, behaviour): [(x boundary label, stopped, times [day],
+    {STRAINS key: strains [-]})]}; title: a format of sc, beh and what."""
+    fig, axes = plt.subplots(len(curves), 3, figsize=(13, 3.2 * len(curves)), squeeze=False)
+    for i, ((sc, beh), lines) in enumerate(curves.items()):
+        for label, stopped, t, values in lines:
+            for j, (key, _) in enumerate(STRAINS):
+                axes[i, j].semilogx(np.array(t), 1e6 * np.array(values[key]), color=colors[label],
+                                    label=label + (" (stopped)" if stopped else ""))
+        for j, (_, what) in enumerate(STRAINS):
+            axes[i, j].set(title=title.format(sc=sc, beh=beh, what=what), xlabel="time [day]", ylabel=ylabel)
+            axes[i, j].grid(True, which="both", lw=0.3)
+        axes[i, 0].legend(fontsize=7, title="x boundary", title_fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
 
 
 def write(out, results, single):
@@ -149,51 +160,29 @@ def write(out, results, single):
         f.write("Final values (last step) of the boundary study; strains of the skeleton's affine fit, compression negative.\n\n"
                 + "\n".join(lines) + "\n")
 
-    fig, axes = plt.subplots(len(SCENARIOS) * len(BEHAVIOURS), 3, figsize=(13, 3.2 * len(SCENARIOS) * len(BEHAVIOURS)), squeeze=False)
     colors = dict(zip([c[0] for c in CASES], ("k", "tab:blue", "tab:purple", "tab:red")))
-    failed = {k: r["status"] for k, r in results.items() if r.get("status") != "finished"}
-    for i, (sc, beh) in enumerate((s, b) for s in SCENARIOS for b in BEHAVIOURS):
-        for label, _ in CASES:
-            r = results[sc, beh, label]
-            t = np.array(r["times_days"])
-            for j, key in enumerate(("swelling_strain_x", "swelling_strain_y", "swelling_strain_area")):
-                axes[i, j].semilogx(t, 1e6 * np.array(r[key]), color=colors[label],
-                                    label=label + (" (stopped)" if (sc, beh, label) in failed else ""))
-        for j, what in enumerate(("along x (loaded)", "across (y, free)", "area (volumetric)")):
-            ax = axes[i, j]
-            ax.set(title=f"{sc}, {beh}: strain {what}", xlabel="time [day]", ylabel="strain [1e-6]")
-            ax.grid(True, which="both", lw=0.3)
-        axes[i, 0].legend(fontsize=7, title="x boundary", title_fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "boundary_strains.png"), dpi=110)
-    plt.close(fig)
+    failed = {k for k, r in results.items() if r.get("status") != "finished"}
+    pairs = [(sc, beh) for sc in SCENARIOS for beh in BEHAVIOURS]
+    total = {(sc, beh): [(label, (sc, beh, label) in failed, results[sc, beh, label]["times_days"], results[sc, beh, label])
+                         for label, _ in CASES] for sc, beh in pairs}
+    strain_figure(plt, os.path.join(out, "boundary_strains.png"), total, colors, "{sc}, {beh}: strain {what}", "strain [1e-6]")
 
     # the expansion due to the swelling: total less the same load on a non-swelling specimen
-    fig, axes = plt.subplots(len(SCENARIOS) * len(BEHAVIOURS), 3, figsize=(13, 3.2 * len(SCENARIOS) * len(BEHAVIOURS)), squeeze=False)
-    part_rows = []
-    for i, (sc, beh) in enumerate((s, b) for s in SCENARIOS for b in BEHAVIOURS):
+    part, part_rows = {}, []
+    for sc, beh in pairs:
+        part[sc, beh] = []
         for label, bx in CASES:
             if bx == "fixed":
                 continue
             r = results[sc, beh, label]
             base = results.get((sc, beh, label + ", load only"))
             n = len(r["times_days"]) if base is None else min(len(r["times_days"]), len(base["times_days"]))
-            t = np.array(r["times_days"][:n])
-            part = {}
-            for j, key in enumerate(("swelling_strain_x", "swelling_strain_y", "swelling_strain_area")):
-                v = np.array(r[key][:n]) - (np.array(base[key][:n]) if base is not None else 0.0)
-                part[key] = v
-                axes[i, j].semilogx(t, 1e6 * v, color=colors[label], label=label + (" (stopped)" if (sc, beh, label) in failed else ""))
-            part_rows.append((sc, beh, label, 1e6 * part["swelling_strain_x"][-1], 1e6 * part["swelling_strain_y"][-1],
-                              1e6 * part["swelling_strain_area"][-1], t[-1]))
-        for j, what in enumerate(("along x (loaded)", "across (y, free)", "area (volumetric)")):
-            ax = axes[i, j]
-            ax.set(title=f"{sc}, {beh}: {what}", xlabel="time [day]", ylabel="swelling strain: total - load only [1e-6]")
-            ax.grid(True, which="both", lw=0.3)
-        axes[i, 0].legend(fontsize=7, title="x boundary", title_fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "swelling_part.png"), dpi=110)
-    plt.close(fig)
+            v = {key: np.array(r[key][:n]) - (np.array(base[key][:n]) if base is not None else 0.0) for key, _ in STRAINS}
+            part[sc, beh].append((label, (sc, beh, label) in failed, r["times_days"][:n], v))
+            part_rows.append((sc, beh, label, 1e6 * v["swelling_strain_x"][-1], 1e6 * v["swelling_strain_y"][-1],
+                              1e6 * v["swelling_strain_area"][-1], r["times_days"][n - 1]))
+    strain_figure(plt, os.path.join(out, "swelling_part.png"), part, colors, "{sc}, {beh}: {what}",
+                  "swelling strain: total - load only [1e-6]")
     with open(os.path.join(out, "swelling_part.md"), "w") as f:
         f.write("Expansion due to the swelling: the loaded run's strain less that of the same load on a non-swelling specimen "
                 "(eps_inf 0), at the last step both reached.\n\n| scenario | behaviour | x boundary | along x [1e-6] | across (y) [1e-6] | "

@@ -8,7 +8,6 @@ bar's mean and largest stress against time with the yield stress), and each run'
   scripts/yade-swelldem -j 1 -n -x scripts/rebar_study.py --size-mm 20 20 --out out/rebar"""
 import argparse
 import csv
-import json
 import os
 import sys
 
@@ -46,18 +45,7 @@ def main(argv):
         for t in tests.values():
             t.validate()
     os.makedirs(a.out, exist_ok=True)
-    results = {}
-    for k, t in tests.items():
-        path = os.path.join(t.out, "results.json")
-        if os.path.exists(path) and json.load(open(path)).get("status") == "finished":
-            results[k] = json.load(open(path))
-            continue
-        print(f"rebar_study: {k}", flush=True)
-        try:
-            results[k] = scenario.run(t)
-        except Exception as e:  # noqa: BLE001 - a run that fails is reported, the others go on
-            print(f"rebar_study: {k} failed: {e}", flush=True)
-            results[k] = json.load(open(path))
+    results = scenario.run_all(tests, "rebar_study")
     write(a.out, results)
 
 

@@ -29,6 +29,7 @@ constructors check what ends up as a ContactKind or solver attribute. Both run b
 mesostructure is generated.
 """
 import ast
+import json
 import math
 import os
 import re
@@ -477,6 +478,32 @@ def prepare(test, extra_times=()):
     if test.tolerance:  # 0 keeps the solver's own: the ADR's is an accuracy setting, the implicit solver's is round-off
         settings["tolerance"] = test.tolerance
     return kinds, dem.make_solver(test.solver, **settings)
+
+
+def run_all(tests, prog, keep_failed=False):
+    """Runs every SwellingTest of the dict `tests` in this process, one after the other, for a
+    study script `prog`; a test whose out folder already holds a finished run (or, with
+    keep_failed, a failed one) is read back instead, so that a study that stopped resumes. A run
+    that fails is reported on stdout and its results.json (the steps it did) kept. Returns
+    {key: results dict}."""
+    keep = ("finished", "failed") if keep_failed else ("finished",)
+    results = {}
+    for key, test in tests.items():
+        path = os.path.join(test.out, "results.json")
+        if os.path.exists(path):
+            with open(path) as f:
+                res = json.load(f)
+            if res.get("status", "").split(":")[0] in keep:
+                results[key] = res
+                continue
+        print(f"{prog}: {key}", flush=True)
+        try:
+            results[key] = run(test)
+        except Exception as e:  # noqa: BLE001 - a run that fails is reported, the others go on
+            print(f"{prog}: {key} failed: {e}", flush=True)
+            with open(path) as f:
+                results[key] = json.load(f)
+    return results
 
 
 #: O.tags a yade-batch job carries (yade.utils.readParamsFromTable sets them), kept in results.json.

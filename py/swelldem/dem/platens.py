@@ -76,12 +76,17 @@ class Boundary:
 class Platens:
     """The platens of a scene (see the module's doc): body ids per axis, and their readings."""
 
-    def __init__(self, assembly, boundaries, walls, area):
-        self.assembly, self.boundaries, self.walls, self.area = assembly, boundaries, walls, area
+    def __init__(self, boundaries, walls, area):
+        self.boundaries, self.walls, self.area = boundaries, walls, area
+        self.start = {a: self._distance(a) for a in walls}
+
+    def _distance(self, axis):
+        """The platens' distance along axis 'x' or 'y' now [m]."""
         yade, _ = sc.require("swelldem.dem.platens")
         O = yade.Omega()
-        self.start = {a: O.bodies[hi].state.pos[k] - O.bodies[lo].state.pos[k]
-                      for k, a in enumerate(AXES) if a in walls for lo, hi in [walls[a]]}
+        k = AXES.index(axis)
+        lo, hi = self.walls[axis]
+        return float(O.bodies[hi].state.pos[k] - O.bodies[lo].state.pos[k])
 
     def force_on(self, body_id, axis):
         """Sum of the contact forces on one body along axis k (0 x, 1 y) [N]."""
@@ -105,13 +110,7 @@ class Platens:
 
     def displacement(self, axis):
         """Change of the platens' distance along axis 'x' or 'y' [m] (elongation positive); 0 without platens."""
-        if axis not in self.walls:
-            return 0.0
-        yade, _ = sc.require("swelldem.dem.platens")
-        O = yade.Omega()
-        k = AXES.index(axis)
-        lo, hi = self.walls[axis]
-        return float(O.bodies[hi].state.pos[k] - O.bodies[lo].state.pos[k] - self.start[axis])
+        return self._distance(axis) - self.start[axis] if axis in self.walls else 0.0
 
 
 def facing_discs(depth, across, r, band):
@@ -197,4 +196,4 @@ def add_platens(assembly, yscene, boundary_x=Boundary(), boundary_y=Boundary(), 
         ip2.cohesive = False
     if forces:  # before the solver, the last engine
         O.engines = O.engines[:-1] + forces + [O.engines[-1]]
-    return Platens(assembly, boundaries, walls, area)
+    return Platens(boundaries, walls, area)

@@ -40,12 +40,13 @@ MAX_RATIO = 0.1
 class RebarLayout:
     """Where the bars go, from the reinforcement ratio: n bars along x at y_m [m], each of
     thickness thickness_m [m] (rho H / n) in the plane, made of touching discs of radius radius_m
-    [m] (about the mesostructure's mean radius) that span the specimen's width."""
+    [m] (about the mesostructure's mean radius), n_discs of them, that span the specimen's width."""
     ratio: float
     n_bars: int
     y_m: tuple
     thickness_m: float
     radius_m: float
+    n_discs: int
     young: float = STEEL_YOUNG
     yield_stress: float = STEEL_YIELD
 
@@ -68,7 +69,7 @@ def layout(assembly, ratio, n_bars=1, young=STEEL_YOUNG, yield_stress=STEEL_YIEL
         if not (np.isfinite(y) and r < y < h - r):
             options.bad(f"rebar_y_m[{k}]", y, f"a height inside the specimen, {r:.4g} < y < {h - r:.4g} [m] (one disc radius from its sides)")
     return RebarLayout(ratio=float(ratio), n_bars=int(n_bars), y_m=ys, thickness_m=float(ratio) * h / n_bars, radius_m=r,
-                       young=float(young), yield_stress=float(yield_stress))
+                       n_discs=n_discs, young=float(young), yield_stress=float(yield_stress))
 
 
 def carve(assembly, lay):
@@ -83,10 +84,10 @@ def carve(assembly, lay):
 class Bars:
     """The bars of a scene: their disc ids, STEEL contacts and readings."""
 
-    def __init__(self, lay, disc_ids, steel_pairs, area_m2):
+    def __init__(self, lay, disc_ids, steel_pairs, area_m2, n_bond):
         self.layout, self.disc_ids, self.steel_pairs, self.area_m2 = lay, disc_ids, steel_pairs, area_m2
+        self.n_bond = n_bond  # bond contacts made at the set-up
         self.yield_day = None
-        self.n_bond = 0  # bond contacts made at the set-up
 
     def stresses(self):
         """Axial stress [Pa] of every STEEL contact (tension positive), bar after bar."""
@@ -116,18 +117,17 @@ def add_bars(assembly, yscene, lay, itz_kind):
     area = lay.thickness_m * b
     # kn = E_s A / L, with A set to the bar's section A_s below
     ip2.steel = contact_kind(STEEL, behaviour="elastic", young=lay.young, shear_ratio=0.3, damage=False)
-    k = itz_kind
-    ip2.bond = contact_kind(BOND, behaviour=k.behaviour, young=k.young, shear_ratio=k.shearRatio, damage=k.damage,
-                            tensile_strength=k.tensileStrength, q1=k.q1, q2=k.q2, q3=k.q3, q4=k.q4,
-                            kelvinUnitsPerDecade=k.kelvinUnitsPerDecade, residualFrictionAngle=k.residualFrictionAngle,
+    itz = itz_kind
+    ip2.bond = contact_kind(BOND, behaviour=itz.behaviour, young=itz.young, shear_ratio=itz.shearRatio, damage=itz.damage,
+                            tensile_strength=itz.tensileStrength, q1=itz.q1, q2=itz.q2, q3=itz.q3, q4=itz.q4,
+                            kelvinUnitsPerDecade=itz.kelvinUnitsPerDecade, residualFrictionAngle=itz.residualFrictionAngle,
                             # the ITZ's temperature, for creep at temperature (docs/temperature.md)
-                            temperatureDays=list(k.temperatureDays), temperatures=list(k.temperatures), thermalCreep=k.thermalCreep,
-                            creepReferenceTemperature=k.creepReferenceTemperature, creepUe=k.creepUe, creepUr=k.creepUr,
-                            creepUs=k.creepUs)
+                            temperatureDays=list(itz.temperatureDays), temperatures=list(itz.temperatures), thermalCreep=itz.thermalCreep,
+                            creepReferenceTemperature=itz.creepReferenceTemperature, creepUe=itz.creepUe, creepUr=itz.creepUr,
+                            creepUs=itz.creepUs)
     mat = W.ConcreteMat(steel=True, young=lay.young, label="steel")
     O.materials.append(mat)
-    rr = lay.radius_m
-    n = max(1, int(round(assembly.width_m / (2 * rr))))
+    rr, n = lay.radius_m, lay.n_discs
     band = 1.5 * float(assembly.r.max())
     ids, steel_pairs, n_bond = [], [], 0
     ip2.cohesive = True
@@ -150,6 +150,4 @@ def add_bars(assembly, yscene, lay, itz_kind):
                 n_bond += 1
     finally:
         ip2.cohesive = False
-    bars = Bars(lay, ids, steel_pairs, area)
-    bars.n_bond = n_bond
-    return bars
+    return Bars(lay, ids, steel_pairs, area, n_bond)
