@@ -39,6 +39,7 @@ def main(argv):
                     help="all overloaded contacts at once, or the most overloaded first (breakOneAtATime)")
     ap.add_argument("--steps-per-decade", type=float, default=10.0)
     ap.add_argument("--parameters", choices=["paper-micro", "macro"], default="paper-micro")
+    ap.add_argument("--verbose", action="store_true", help="print the solver's progress line per step")
     ap.add_argument("--out", default="", help="also write the result as JSON into this folder (result.json)")
     a = ap.parse_args(argv)
     with options.refuse_bad("bench_implicit_damage.py"):
@@ -48,7 +49,7 @@ def main(argv):
                                      tolerance=a.tolerance, solver="adr")
         test.validate()
         kinds = scenario.make_kinds(test)
-        settings = dict(tStart=test.t_start_days, tEnd=test.t_end, stepsPerDecade=test.steps_per_decade, verbose=False,
+        settings = dict(tStart=test.t_start_days, tEnd=test.t_end, stepsPerDecade=test.steps_per_decade, verbose=a.verbose,
                         breakOneAtATime=a.break_rule == "one")
         if a.tolerance:
             settings["tolerance"] = a.tolerance
