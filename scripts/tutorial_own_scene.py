@@ -50,7 +50,7 @@ kinds = {
 }
 
 # --- 3. Solver: physical times in days, evenly spaced in log time -----------------------------
-# "adr" for runs with damage; "implicit" (exact equilibria, faster) for runs without damage.
+# "adr" (the paper's method) or "implicit" (exact equilibria, faster; docs/performance.md 1b).
 solver = dem.make_solver("adr", tStart=1.0, tEnd=3650.0, stepsPerDecade=5, tolerance=1e-4)
 
 # --- 4. The YADE scene: discs, materials, bonded contacts with their facet areas --------------

@@ -18,7 +18,6 @@ struct ImplicitLinearSystem {
 	std::vector<int>                                   slots;      // per contact, the 21 entries of its 6 x 6 lower triangle (-1: held)
 	std::vector<int>                                   diagSlot;   // per equation
 	std::vector<char>                                  active;     // per contact: its core::ContactLaw::Mode
-	std::vector<double>                                factored;   // values of the current factor
 	SpMat                                              K;
 	Eigen::CholmodDecomposition<SpMat, Eigen::Lower>   chol;
 	int                                                nEq = 0;
@@ -43,7 +42,8 @@ namespace {
 	// A real interaction's tangent and its state (core::ContactLaw::Mode; 0 for a stock contact):
 	// kn, ks [N/m] of the state the contact is in, and for a sliding contact the slope of its shear
 	// force along the Coulomb cone, slide = dFs/d(opening) = -sign(Fs) tan(phi_res) kn [N/m].
-	char contactTangent(const Interaction* I, Real& kn, Real& ks, Real& slide)
+	// sticking: a sliding contact enters as sticking (the elastic predictor's tangent).
+	char contactTangent(const Interaction* I, Real& kn, Real& ks, Real& slide, bool sticking)
 	{
 		slide          = 0;
 		const auto* sp = dynamic_cast<const SwellPhys*>(I->phys.get());
@@ -53,12 +53,13 @@ namespace {
 			return 0;
 		}
 		using Mode   = core::ContactLaw::Mode;
-		const Mode m = sp->kind->law().mode(sp->state);
+		const Mode m0 = sp->kind->law().mode(sp->state);
+		const Mode m  = sticking && m0 == Mode::Sliding ? Mode::Sticking : m0;
 		kn           = m == Mode::Open ? 0 : sp->state.kn;
 		ks           = (m == Mode::Intact || m == Mode::Sticking) ? sp->state.ks : 0;
 		if (m == Mode::Sliding)
 			slide = -(sp->state.trial.Fs > 0 ? 1 : -1) * std::tan(sp->kind->law().params().strength.residualFrictionAngle) * sp->state.kn;
-		return char(m);
+		return char(m0);
 	}
 }
 
@@ -85,7 +86,11 @@ void ImplicitLogTimeSolver::postLoad()
 {
 	LogTimeSolver::postLoad();
 	core::require(regularization >= 0 && regularization < 1e-3, "ImplicitLogTimeSolver.regularization", regularization, "0 <= regularization < 1e-3");
+	core::require(rotationRegularization >= 0 && rotationRegularization < 1, "ImplicitLogTimeSolver.rotationRegularization", rotationRegularization,
+	              "0 <= rotationRegularization < 1");
+	core::require(refactorTolerance >= 0 && refactorTolerance < 1, "ImplicitLogTimeSolver.refactorTolerance", refactorTolerance, "0 <= refactorTolerance < 1");
 	core::require(maxMove > 0 && maxMove <= 1, "ImplicitLogTimeSolver.maxMove", maxMove, "0 < maxMove <= 1");
+	core::require(mechanismMove >= 0 && mechanismMove < 1, "ImplicitLogTimeSolver.mechanismMove", mechanismMove, "0 <= mechanismMove < 1");
 	core::require(newtonLimit >= 1, "ImplicitLogTimeSolver.newtonLimit", newtonLimit, ">= 1");
 	core::require(maxSlidingExact >= 0, "ImplicitLogTimeSolver.maxSlidingExact", maxSlidingExact, ">= 0");
 	core::requireOpenInterval("ImplicitLogTimeSolver.relaxTolerance", relaxTolerance, 0, 1);
@@ -205,80 +210,28 @@ void ImplicitLogTimeSolver::newtonStep()
 		}
 		S.chol.setMode(Eigen::CholmodSupernodalLLt);
 		S.chol.analyzePattern(S.K);
-		S.factored.clear();
+		// A reloaded scene factors the values the saved run had factored, if its contacts are the same,
+		// so that it keeps or renews its factor exactly as the uninterrupted run.
+		std::vector<int> graph;
+		graph.reserve(2 * contacts.size());
+		for (const Interaction* I : contacts)
+			graph.push_back(I->id1), graph.push_back(I->id2);
 		S.haveFactor = false;
+		if (graph == factoredGraph && factoredValues.size() == size_t(S.K.nonZeros())) {
+			const Eigen::VectorXd current = Eigen::Map<const Eigen::VectorXd>(S.K.valuePtr(), S.K.nonZeros());
+			std::copy(factoredValues.begin(), factoredValues.end(), S.K.valuePtr());
+			S.chol.factorize(S.K);
+			std::copy(current.data(), current.data() + current.size(), S.K.valuePtr());
+			S.haveFactor = S.chol.info() == Eigen::Success;
+		} else
+			factoredValues.clear();
+		factoredGraph.swap(graph);
 		S.active.assign(contacts.size(), 0);
 		++analyses;
 	}
 	if (S.nEq == 0) return;
 
-	// 2. Tangent values: K = sum over contacts of B^T diag(kn, ks) B with, over (x1, y1, rz1, x2, y2, rz2),
-	//    normal row (-n, 0, n, 0) and shear row (-t, -r1, t, -r2), t = ez x n (the increments YADE's ScGeom
-	//    gives the law).
-	double* v = S.K.valuePtr();
-	std::fill(v, v + S.K.nonZeros(), 0.0);
-	long              changes = 0;
-	// The sliding contacts' shear-normal coupling makes the tangent unsymmetric: J = K + U V^T, one
-	// column pair per sliding contact (u = slide bs, v = bn). K keeps its Cholesky factor and J is
-	// solved exactly with the Sherman-Morrison-Woodbury formula; without the coupling Newton
-	// converges only linearly, at rates up to 0.98 an iteration (measured on 20 mm ISR cracking).
-	struct SlidingCoupling {
-		int  eq[6];
-		Real u[6], v[6];
-	};
-	std::vector<SlidingCoupling> sliding;
-	double            kScale  = 0;                      // mean step stiffness kn'' of the contacts
-	for (size_t c = 0; c < contacts.size(); ++c) {
-		const Interaction* I = contacts[c];
-		const auto*        g = static_cast<const ScGeom*>(I->geom.get());
-		kScale += std::abs(static_cast<const NormShearPhys*>(I->phys.get())->kn);
-		Real       kn, ks, slide;
-		const char state = contactTangent(I, kn, ks, slide);
-		changes += state != S.active[c];
-		S.active[c] = state;
-		if (kn == 0 && ks == 0) continue;
-		const Vector3r& n = g->normal;
-		const Real      r1 = g->radius1 - 0.5 * g->penetrationDepth, r2 = g->radius2 - 0.5 * g->penetrationDepth;
-		const Real      bn[6] = { -n[0], -n[1], 0, n[0], n[1], 0 };
-		const Real      bs[6] = { n[1], -n[0], -r1, -n[1], n[0], -r2 };
-		if (slide != 0) {
-			SlidingCoupling sc;
-			for (int d = 0; d < 3; ++d)
-				sc.eq[d] = S.dofOf[3 * I->id1 + d], sc.eq[3 + d] = S.dofOf[3 * I->id2 + d];
-			for (int k = 0; k < 6; ++k)
-				sc.u[k] = slide * bs[k], sc.v[k] = bn[k];
-			sliding.push_back(sc);
-		}
-		const int*      slot  = &S.slots[21 * c];
-		for (int k = 0; k < 21; ++k)
-			if (slot[k] >= 0) v[slot[k]] += kn * bn[kPairs.a[k]] * bn[kPairs.b[k]] + ks * bs[kPairs.a[k]] * bs[kPairs.b[k]];
-	}
-	activeChanges = changes;
-	forEachSpring([&](int id, int axis, Real k) {
-		const int e = S.dofOf[3 * id + axis];
-		if (e >= 0) v[S.diagSlot[e]] += k;
-	});
-	// A DOF that no contact holds in the current state (a loose disc, a disc whose contacts are all
-	// open) moves under its own load as if one typical contact held it, so that it can close them.
-	kScale = contacts.empty() ? 1.0 : kScale / contacts.size();
-	for (int e = 0; e < S.nEq; ++e) {
-		double& d = v[S.diagSlot[e]];
-		d += d > 0 ? regularization * d : (kScale > 0 ? kScale : 1.0);
-	}
-
-	// 3. Factor (only when the tangent changed: a new step of an aging kind, a break, a state change,
-	//    the geometry). Keeping the factor while only the geometry moves was measured: 112 -> 4,227
-	//    iterations on a 40 mm run without damage, so the geometry's share of the tangent matters.
-	if (!S.haveFactor || S.factored.size() != size_t(S.K.nonZeros()) || !std::equal(v, v + S.K.nonZeros(), S.factored.begin())) {
-		S.chol.factorize(S.K);
-		++factorizations;
-		if (S.chol.info() != Eigen::Success)
-			fail("the tangent stiffness (" + std::to_string(S.nEq) + " equations) is not positive definite; CHOLMOD could not factor it");
-		S.factored.assign(v, v + S.K.nonZeros());
-		S.haveFactor = true;
-	}
-
-	// 4. Residual from YADE's forces, solve, move the bodies through their velocities.
+	// The residual, from YADE's forces.
 	Eigen::VectorXd r(S.nEq);
 	for (const auto& b : bodies) {
 		if (!b) continue;
@@ -288,30 +241,137 @@ void ImplicitLogTimeSolver::newtonStep()
 		for (int d = 0; d < 3; ++d)
 			if (S.dofOf[3 * b->id + d] >= 0) r[S.dofOf[3 * b->id + d]] = val[d];
 	}
-	Eigen::VectorXd du = S.chol.solve(r);
-	if (!sliding.empty() && long(sliding.size()) <= maxSlidingExact) {
-		const long      m = long(sliding.size());
-		Eigen::MatrixXd U = Eigen::MatrixXd::Zero(S.nEq, m);
-		for (long j = 0; j < m; ++j)
-			for (int k = 0; k < 6; ++k)
-				if (sliding[j].eq[k] >= 0) U(sliding[j].eq[k], j) += sliding[j].u[k];
-		const Eigen::MatrixXd Z = S.chol.solve(U); // K^-1 U
-		auto vDot = [&](const SlidingCoupling& sc, const auto& x) {
-			Real s = 0;
-			for (int k = 0; k < 6; ++k)
-				if (sc.eq[k] >= 0) s += sc.v[k] * x(sc.eq[k]);
-			return s;
+	std::vector<char> mech(bodies.size(), 0);
+	for (int id : heldMechanisms)
+		if (id >= 0 && size_t(id) < mech.size()) mech[id] = 1;
+	// 2.-4. run again (at most 4 times) when the move shows new mechanisms.
+	double*         v = S.K.valuePtr();
+	Eigen::VectorXd du;
+	for (int pass = 0;; ++pass) {
+		// 2. Tangent values: K = sum over contacts of B^T diag(kn, ks) B with, over (x1, y1, rz1, x2, y2, rz2),
+		//    normal row (-n, 0, n, 0) and shear row (-t, -r1, t, -r2), t = ez x n (the increments YADE's ScGeom
+		//    gives the law). A sliding contact of a disc in a mechanism enters as sticking.
+		std::fill(v, v + S.K.nonZeros(), 0.0);
+		long              changes = 0;
+		// The sliding contacts' shear-normal coupling makes the tangent unsymmetric: J = K + U V^T, one
+		// column pair per sliding contact (u = slide bs, v = bn). K keeps its Cholesky factor and J is
+		// solved exactly with the Sherman-Morrison-Woodbury formula; without the coupling Newton
+		// converges only linearly, at rates up to 0.98 an iteration (measured on 20 mm ISR cracking).
+		struct SlidingCoupling {
+			int  eq[6];
+			Real u[6], v[6];
 		};
-		Eigen::MatrixXd Sm = Eigen::MatrixXd::Identity(m, m);
-		Eigen::VectorXd vy(m);
-		for (long i = 0; i < m; ++i) {
-			vy[i] = vDot(sliding[i], du);
-			for (long j = 0; j < m; ++j)
-				Sm(i, j) += vDot(sliding[i], Z.col(j));
+		std::vector<SlidingCoupling> sliding;
+		double            kScale  = 0;                      // mean step stiffness kn'' of the contacts
+		for (size_t c = 0; c < contacts.size(); ++c) {
+			const Interaction* I = contacts[c];
+			const auto*        g = static_cast<const ScGeom*>(I->geom.get());
+			kScale += std::abs(static_cast<const NormShearPhys*>(I->phys.get())->kn);
+			Real       kn, ks, slide;
+			const char state = contactTangent(I, kn, ks, slide, mech[I->id1] || mech[I->id2]);
+			if (pass == 0) changes += state != S.active[c], S.active[c] = state;
+			if (kn == 0 && ks == 0) continue;
+			const Vector3r& n = g->normal;
+			const Real      r1 = g->radius1 - 0.5 * g->penetrationDepth, r2 = g->radius2 - 0.5 * g->penetrationDepth;
+			const Real      bn[6] = { -n[0], -n[1], 0, n[0], n[1], 0 };
+			const Real      bs[6] = { n[1], -n[0], -r1, -n[1], n[0], -r2 };
+			if (slide != 0) {
+				SlidingCoupling sc;
+				for (int d = 0; d < 3; ++d)
+					sc.eq[d] = S.dofOf[3 * I->id1 + d], sc.eq[3 + d] = S.dofOf[3 * I->id2 + d];
+				for (int k = 0; k < 6; ++k)
+					sc.u[k] = slide * bs[k], sc.v[k] = bn[k];
+				sliding.push_back(sc);
+			}
+			const int*      slot  = &S.slots[21 * c];
+			for (int k = 0; k < 21; ++k)
+				if (slot[k] >= 0) v[slot[k]] += kn * bn[kPairs.a[k]] * bn[kPairs.b[k]] + ks * bs[kPairs.a[k]] * bs[kPairs.b[k]];
 		}
-		du -= Z * Sm.partialPivLu().solve(vy);
+		if (pass == 0) activeChanges = changes;
+		forEachSpring([&](int id, int axis, Real k) {
+			const int e = S.dofOf[3 * id + axis];
+			if (e >= 0) v[S.diagSlot[e]] += k;
+		});
+		// A DOF that no contact holds in the current state (a loose disc, a disc whose contacts are all
+		// open) moves under its own load as if one typical contact held it, so that it can close them.
+		kScale = contacts.empty() ? 1.0 : kScale / contacts.size();
+		for (int e = 0; e < S.nEq; ++e) {
+			double& d = v[S.diagSlot[e]];
+			d += d > 0 ? regularization * d : (kScale > 0 ? kScale : 1.0);
+		}
+		// A disc held by one contact can roll about it: a mode of zero stiffness in this tangent, along
+		// which a torque residual at round-off would move it without bound (measured: a 3e-6 relative
+		// change of the tangent moved 20 mm specimens by 1e4 times the residual's own scale). The shift
+		// bounds that move; rotations converge by this factor an iteration.
+		for (const auto& b : bodies)
+			if (b) {
+				const int e = S.dofOf[3 * b->id + 2];
+				if (e >= 0) v[S.diagSlot[e]] *= 1 + rotationRegularization;
+			}
+
+		// 3. Factor when the tangent changed: a new step of an aging kind, a break, a state change, a
+		//    mechanism held. The geometry moving within a step changes the entries by about the strain
+		//    increment (1e-5 to 1e-4 of the largest): the factor is kept, and the iteration is a modified
+		//    Newton step on YADE's exact residual. Every step starts with a fresh factor: a factor kept from
+		//    step to step drifts with the strain, and the steps of a free lattice then end at 1e-7 of the
+		//    opening from the closed form instead of 1e-12 (measured).
+		const long nnz = S.K.nonZeros();
+		double     drift = 0, largest = 0;
+		if (S.haveFactor && factoredValues.size() == size_t(nnz))
+			for (long k = 0; k < nnz; ++k)
+				drift = std::max(drift, std::abs(v[k] - factoredValues[k])), largest = std::max(largest, std::abs(v[k]));
+		if (!S.haveFactor || factoredValues.size() != size_t(nnz) || drift > refactorTolerance * largest || (iterInStep == 1 && pass == 0)) {
+			S.chol.factorize(S.K);
+			++factorizations;
+			if (S.chol.info() != Eigen::Success)
+				fail("the tangent stiffness (" + std::to_string(S.nEq) + " equations) is not positive definite; CHOLMOD could not factor it");
+			factoredValues.assign(v, v + nnz);
+			S.haveFactor = true;
+		}
+
+		// 4. Solve, move the bodies through their velocities.
+		du = S.chol.solve(r);
+		if (!sliding.empty() && long(sliding.size()) <= maxSlidingExact) {
+			const long      m = long(sliding.size());
+			Eigen::MatrixXd U = Eigen::MatrixXd::Zero(S.nEq, m);
+			for (long j = 0; j < m; ++j)
+				for (int k = 0; k < 6; ++k)
+					if (sliding[j].eq[k] >= 0) U(sliding[j].eq[k], j) += sliding[j].u[k];
+			const Eigen::MatrixXd Z = S.chol.solve(U); // K^-1 U
+			auto vDot = [&](const SlidingCoupling& sc, const auto& x) {
+				Real s = 0;
+				for (int k = 0; k < 6; ++k)
+					if (sc.eq[k] >= 0) s += sc.v[k] * x(sc.eq[k]);
+				return s;
+			};
+			Eigen::MatrixXd Sm = Eigen::MatrixXd::Identity(m, m);
+			Eigen::VectorXd vy(m);
+			for (long i = 0; i < m; ++i) {
+				vy[i] = vDot(sliding[i], du);
+				for (long j = 0; j < m; ++j)
+					Sm(i, j) += vDot(sliding[i], Z.col(j));
+			}
+			du -= Z * Sm.partialPivLu().solve(vy);
+		}
+		if (!du.allFinite()) fail("the linear solve gave a non-finite displacement");
+		// A mechanism shows as a relative move across a contact far beyond elastic ones (measured: 10 to
+		// 300 radii where a disc's contacts all slide, against 1e-3 radii in elastic steps). Both discs'
+		// sliding contacts then enter the tangent as sticking, and the move is solved again.
+		long newlyHeld = 0;
+		auto moveOf    = [&](int id, int d) {
+			const int e = S.dofOf[3 * id + d];
+			return e >= 0 ? du[e] : 0.0;
+		};
+		for (const Interaction* I : contacts) {
+			const auto* g   = static_cast<const ScGeom*>(I->geom.get());
+			const Real  rel = std::hypot(moveOf(I->id2, 0) - moveOf(I->id1, 0), moveOf(I->id2, 1) - moveOf(I->id1, 1))
+			                 + std::abs(moveOf(I->id1, 2)) * g->radius1 + std::abs(moveOf(I->id2, 2)) * g->radius2;
+			if (mechanismMove == 0 || !(rel > mechanismMove * 0.5 * (g->radius1 + g->radius2))) continue;
+			for (int id : { I->id1, I->id2 })
+				if (!mech[id]) mech[id] = 1, heldMechanisms.push_back(id), ++newlyHeld, ++mechanismHolds;
+		}
+		if (newlyHeld == 0 || pass >= 4) break;
 	}
-	if (!du.allFinite()) fail("the linear solve gave a non-finite displacement");
 	for (const auto& b : bodies) {
 		if (!b) continue;
 		const int* e = &S.dofOf[3 * b->id];
@@ -395,7 +455,8 @@ void ImplicitLogTimeSolver::action()
 	const bool        stalled = !exact && iterInStep - newtonSince > newtonLimit && b.ratio <= stallTolerance;
 	const StepOutcome out     = settleStep(b, exact || stalled);
 	if (stalled && out != StepOutcome::Continue) ++stalledRounds;
-	if (out != StepOutcome::Continue || iterInStep == 1) relaxing = false, newtonSince = iterInStep, relaxPhase = 0, lineAlpha = 0;
+	if (out != StepOutcome::Continue || iterInStep == 1)
+		relaxing = false, newtonSince = iterInStep, relaxPhase = 0, lineAlpha = 0, heldMechanisms.clear();
 	if (out == StepOutcome::Committed) return;
 	if (out == StepOutcome::Broke) { // the next pass computes the forces without the broken contacts
 		zeroVelocities(scene);

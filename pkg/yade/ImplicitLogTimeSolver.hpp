@@ -25,9 +25,20 @@ public:
 	X(Real, regularization, 1e-12, swelldem_attr::Setting,                                                                                                \
 	  "Relative diagonal shift of the tangent for local mechanisms (a disc held by one contact, open cracks): it changes "                         \
 	  "the iteration path, never the converged equilibrium, which is YADE's residual at the tolerance [-]")                                         \
+	X(Real, rotationRegularization, 1e-3, swelldem_attr::Setting,                                                                                       \
+	  "Relative diagonal shift of the tangent's rotations: a disc held by one contact can roll about it (no stiffness in the tangent), and "     \
+	  "the shift bounds its move along that mode; rotations converge by this factor an iteration, the equilibrium is YADE's residual [-]")      \
+	X(Real, refactorTolerance, 1e-3, swelldem_attr::Setting,                                                                                            \
+	  "The Cholesky factor is kept while no entry of the tangent differs from the factored one by more than this fraction of the largest "    \
+	  "entry (the geometry moving within a step; a state change, a break or an aging kind's new step differ by far more); the iteration is "   \
+	  "then a modified Newton step on YADE's exact residual; 0: refactor at any change [-]")                                                   \
 	X(Real, maxMove, 0.05, swelldem_attr::Setting,                                                                                                       \
 	  "Largest move of a disc in one iteration, as a fraction of its radius: a disc that nothing holds in some direction (a mechanism: "         \
 	  "sliding or open contacts only) moves at most this far per iteration, until it meets a neighbour or an equilibrium [-]")                    \
+	X(Real, mechanismMove, 1e-2, swelldem_attr::Setting,                                                                                                \
+	  "Relative move across a contact, as a fraction of the mean radius, above which a Newton move is taken as a mechanism's (a disc that its "  \
+	  "sliding contacts do not hold in some direction): the sliding contacts of both discs then enter the tangent as sticking for the rest of " \
+	  "the round, so that the disc slides by elastic amounts per iteration instead of jumping (the elastic predictor's tangent); 0: never [-]")                                             \
 	X(long, newtonLimit, 20, swelldem_attr::Setting,                                                                                                    \
 	  "Newton iterations without reaching the tolerance after which the step continues by dynamic relaxation (a broken contact's "               \
 	  "open / closed / sliding state that does not settle under Newton) [-]")                                                                       \
@@ -41,6 +52,7 @@ public:
 	X(long, stalledRounds, 0, swelldem_attr::Result, "Rounds (a step, or its part between breaks) settled at stallTolerance, not at tolerance [-]") \
 	X(long, backtracks, 0, swelldem_attr::Result, "Newton moves halved by the line search so far [-]")                                             \
 	X(long, relaxationIterations, 0, swelldem_attr::Result, "Iterations done by dynamic relaxation so far [-]")                                      \
+	X(long, mechanismHolds, 0, swelldem_attr::Result, "Discs whose sliding contacts were taken as sticking (mechanismMove) so far, once a round [-]") \
 	X(long, factorizations, 0, swelldem_attr::Result, "Numeric Cholesky factorizations so far [-]")                                                    \
 	X(long, analyses, 0, swelldem_attr::Result, "Symbolic analyses (contact graph changes) so far [-]")                                               \
 	X(long, activeChanges, 0, swelldem_attr::Result, "Contacts whose state (intact, open, sticking, sliding) changed in the last iteration [-]")              \
@@ -49,6 +61,12 @@ public:
 	X(Real, lineAlpha, 0.0, swelldem_attr::Internal, "Fraction of the last Newton move being tried by the line search (0: none) [-]")               \
 	X(Real, lineRatio0, 0.0, swelldem_attr::Internal, "Residual 2-norm over the free DOFs before the last Newton move (torques over the radius) [N]") \
 	X(std::vector<Real>, lineMove, std::vector<Real>(), swelldem_attr::Internal, "The last Newton move, 3 per body (x, y, rotation z) [m, rad]")  \
+	X(std::vector<int>, heldMechanisms, std::vector<int>(), swelldem_attr::Internal,                                                                   \
+	  "Discs whose sliding contacts enter the tangent as sticking in the current round (mechanismMove) [-]")                                        \
+	X(std::vector<Real>, factoredValues, std::vector<Real>(), swelldem_attr::Internal,                                                                 \
+	  "Entries of the tangent that the current Cholesky factor was computed from (kept so that a reloaded scene factors the same) [N/m; N, N m with rotations]")       \
+	X(std::vector<int>, factoredGraph, std::vector<int>(), swelldem_attr::Internal,                                                                    \
+	  "Body ids (2 per contact) of the contacts the tangent's sparsity pattern was made for [-]")                                                 \
 	X(bool, relaxing, false, swelldem_attr::Internal, "The step is in a dynamic relaxation phase [-]")                                                  \
 	X(long, newtonSince, 0, swelldem_attr::Internal, "Iteration of the step at which Newton (re)started [-]")                                         \
 	X(int, relaxPhase, 0, swelldem_attr::Internal, "Dynamic relaxation phases in the current round [-]")                                             \

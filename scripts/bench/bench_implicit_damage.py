@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 """One swelling test with damage on under either log-time solver and either break rule, built
-from the scenarios' pieces (scenario.make_kinds, dem.make_solver, dem.to_yade) so that the
-implicit solver, which the scenarios refuse with damage, can be measured:
+from the scenarios' pieces (scenario.make_kinds, dem.make_solver, dem.to_yade), with nothing but
+the run timed and the broken shares counted over the contacts bonded at the start:
 
     scripts/yade-swelldem -j 1 -n -x scripts/bench/bench_implicit_damage.py --scenario isr \\
         --behaviour elastic --size-mm 40 40 --seed 1 --solver implicit [--tolerance 0] \\
@@ -43,10 +43,9 @@ def main(argv):
     ap.add_argument("--out", default="", help="also write the result as JSON into this folder (result.json)")
     a = ap.parse_args(argv)
     with options.refuse_bad("bench_implicit_damage.py"):
-        # validated as an ADR test: the scenarios' refusal of the implicit solver with damage is what this lifts
         test = scenario.SwellingTest(scenario=a.scenario, behaviour=a.behaviour, damage=True, size_mm=list(a.size_mm),
                                      seed=a.seed, parameters=a.parameters, steps_per_decade=a.steps_per_decade,
-                                     tolerance=a.tolerance, solver="adr")
+                                     tolerance=a.tolerance, solver=a.solver)
         test.validate()
         kinds = scenario.make_kinds(test)
         settings = dict(tStart=test.t_start_days, tEnd=test.t_end, stepsPerDecade=test.steps_per_decade, verbose=a.verbose,

@@ -10,7 +10,8 @@ both), iterations, peak memory, and the agreement of the results (final strains;
 Each run is `scripts/yade-swelldem -n -j THREADS -x scripts/swelling_test.py ...` under GNU time
 (peak memory), in OUT/<size>-<scenario>-<behaviour>-<dmg|nodmg>-<solver>/. A finished run is
 reused (delete its folder to time it again). Prints a Markdown table and writes OUT/solvers.json
-and OUT/solvers.md.
+and OUT/solvers.md; with more than one size, OUT/cost_vs_size.png: each solver's solve time
+(results.json wall_s) against the disc count, log-log, with its fitted power of N.
 """
 import argparse
 import json
@@ -69,6 +70,38 @@ def agreement(a, b):
     return worst, strain
 
 
+def plot_cost_vs_size(rows, path):
+    """Solve time of both solvers against the disc count, per scenario and behaviour, with the
+    least-squares exponent of each curve (time ~ N^p) in the legend."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+    fig, ax = plt.subplots(figsize=(6.4, 4.6))
+    groups = {}
+    for row in rows:
+        groups.setdefault(row["case"].split("-", 1)[1], []).append(row)
+    for case, rs in groups.items():
+        rs = [r for r in rs if r["adr"]["run_wall_s"] and r["implicit"]["run_wall_s"]]
+        if len(rs) < 2:
+            continue
+        n = np.array([r["implicit"]["n_particles"] for r in rs], float)
+        for solver, style in (("adr", "o-"), ("implicit", "s-")):
+            t = np.array([r[solver]["run_wall_s"] for r in rs], float)
+            p = np.polyfit(np.log(n), np.log(t), 1)[0]
+            ax.loglog(n, t, style, label=f"{solver}, {case} (~N^{p:.2f})")
+    n0 = np.array([min(r["implicit"]["n_particles"] for r in rows), max(r["implicit"]["n_particles"] for r in rows)], float)
+    ax.loglog(n0, rows[0]["implicit"]["run_wall_s"] * n0 / n0[0], "k:", lw=1, label="proportional to N")
+    ax.set_xlabel("discs")
+    ax.set_ylabel("solve time of the whole run [s]")
+    ax.set_title("Cost against specimen size (1 thread)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=130)
+    plt.close(fig)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--sizes-mm", type=float, nargs="+", default=[20.0])
@@ -121,6 +154,8 @@ def main():
         json.dump(rows, f, indent=1)
     with open(os.path.join(a.out, "solvers.md"), "w") as f:
         f.write(table + "\n")
+    if len(a.sizes_mm) > 1:
+        plot_cost_vs_size(rows, os.path.join(a.out, "cost_vs_size.png"))
 
 
 if __name__ == "__main__":

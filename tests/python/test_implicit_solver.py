@@ -51,10 +51,15 @@ def larive(t):
     return (1 - math.exp(-t / 50.0)) / (1 + math.exp(-(t - 100.0) / 50.0))
 
 
-@pytest.mark.parametrize("solver,tol,force_tol", [("ImplicitLogTimeSolver", 1e-9, 1e-10), ("AdrLogTimeIntegrator", 1e-6, 3e-4)])
+@pytest.mark.parametrize("solver,tol,force_tol", [("ImplicitLogTimeSolver", 1e-9, 1e-7),
+                                                  ("ImplicitLogTimeSolver", "1e-9, rotationRegularization=0", 1e-10),
+                                                  ("AdrLogTimeIntegrator", 1e-6, 3e-4)])
 def test_free_lattice_swells_affinely_without_forces(yade_run, solver, tol, force_tol):
     # force_tol bounds both max |Fn| / (kn d_inf) and the opening error relative to d_inf dxi; measured
-    # 1.9e-12 (implicit) and 3.4e-5 (ADR at tolerance 1e-6): margins 50x and 10x.
+    # 4.5e-8 (implicit), 7.9e-13 (implicit without the rotations' diagonal shift) and 5.7e-5 (ADR at
+    # tolerance 1e-6): margins 2.2x, 120x and 5x. Every step ends with its force ratio below 1e-9 or
+    # at round-off; the shift (rotationRegularization, 1e-3) changes the rotations' path within a
+    # step, and YADE's shear, integrated along that path, by 4.5e-8 (1e-4: 4.6e-9, 1e-6: 4.6e-11).
     res = yade_run(LATTICE.format(n=6, solver=solver, tol=tol) + RUN + r"""
 dump({"fn": [O.interactions[a, b].phys.Fn for a, b, _ in pairs],
       "gap": [(O.bodies[b].state.pos - O.bodies[a].state.pos).norm() - 2 * R for a, b, _ in pairs],
@@ -66,8 +71,11 @@ dump({"fn": [O.interactions[a, b].phys.Fn for a, b, _ in pairs],
     print("measured", solver, max(abs(g - opening) for g in res["gap"]) / opening, max(abs(f) for f in res["fn"]) / (kn * d_inf))
     assert max(abs(g - opening) for g in res["gap"]) < force_tol * opening
     assert max(abs(f) for f in res["fn"]) < force_tol * kn * d_inf
-    if solver == "ImplicitLogTimeSolver":
+    if solver == "ImplicitLogTimeSolver" and "rotationRegularization=0" in str(tol):
         assert res["iters"] <= 3 * res["steps"], "a linear step takes one solve and the pass that checks it"
+    elif solver == "ImplicitLogTimeSolver":
+        # measured 67 for 18 steps: with the rotations' shift the last iterations are modified Newton steps
+        assert res["iters"] <= 5 * res["steps"]
 
 
 @pytest.mark.parametrize("solver,tol,rel", [("ImplicitLogTimeSolver", 1e-9, 1e-10), ("AdrLogTimeIntegrator", 1e-7, 1e-4)])
@@ -235,7 +243,7 @@ from swelldem import scenario, meso, dem, paper
 solver_name, tol = sys.argv[1], float(sys.argv[2])
 test = scenario.SwellingTest(scenario="isr", behaviour="elastic", damage=True, size_mm=[20.0, 20.0], seed=1,
                              parameters="paper-micro", steps_per_decade=10)
-kinds = scenario.make_kinds(test)   # built directly: the scenarios refuse the implicit solver with damage
+kinds = scenario.make_kinds(test)   # built from the scenarios' pieces, to count the solver's own iterations
 settings = dict(tStart=test.t_start_days, tEnd=test.t_end, stepsPerDecade=test.steps_per_decade, verbose=False)
 if tol:
     settings["tolerance"] = tol
@@ -257,8 +265,8 @@ dump({"iters": solver.totalIterations, "relax": getattr(solver, "relaxationItera
 
 
 def test_cracking_specimen_settles_by_newton_and_breaks_as_the_adr(yade_run):
-    # 20 mm ISR, elastic, damage on (74 % of the ITZ contacts break). Measured: 285 Newton
-    # iterations and no relaxation (16,161 iterations, 14,000 of them relaxation, with turning
+    # 20 mm ISR, elastic, damage on (74 % of the ITZ contacts break). Measured: 347 Newton
+    # iterations, 2 of them relaxation (16,161 iterations, 14,000 of them relaxation, with turning
     # contacts frozen instead of sliding contacts' shear-normal coupling and the line search; 4,988
     # with the coupling left out and no relaxation); broken % MORTAR / ITZ / AGG 0.73 / 74.44 / 5.82
     # against the ADR's 1.58 / 75.19 / 5.14 at tolerance 1e-5 and 0.73 / 72.93 / 6.16 at 1e-6: the
@@ -266,10 +274,53 @@ def test_cracking_specimen_settles_by_newton_and_breaks_as_the_adr(yade_run):
     imp = yade_run(CRACKING, "implicit", 0, threads=1)
     adr = yade_run(CRACKING, "adr", 1e-5, threads=1)
     print("measured", imp, adr)
-    assert imp["relax"] == 0 and imp["iters"] < 1000
+    assert imp["relax"] <= 20 and imp["iters"] < 1000
     for kind, pct in imp["broken_pct"].items():
         assert abs(pct - adr["broken_pct"][kind]) < 3.0, kind
     assert imp["broken_pct"]["ITZ"] > 50, "the specimen must crack for this test to test anything"
+
+
+MECHANISM = r"""
+import sys
+from swelldem import scenario, meso, dem, paper
+move = float(sys.argv[1])
+test = scenario.SwellingTest(scenario="isr", behaviour="elastic", damage=True, size_mm=[40.0, 40.0], seed=1,
+                             parameters="paper-micro", steps_per_decade=10)
+kinds = scenario.make_kinds(test)
+solver = dem.make_solver("implicit", tStart=test.t_start_days, tEnd=test.t_end, stepsPerDecade=test.steps_per_decade,
+                         verbose=False, mechanismMove=move)
+assembly = meso.generate(seed=1, width_mm=40.0, height_mm=40.0)
+scenario.set_swelling(test, kinds, test.eps_inf * 2 * float(assembly.r.mean()))
+dem.to_yade(assembly, kinds, solver)
+bonded = {(i.id1, i.id2): i.phys.kind.name for i in O.interactions if i.isReal and not i.phys.broken}
+while not solver.finished:
+    O.run(500, True)
+share = {n: [0, 0] for n in paper.KIND_NAMES}
+for (a, b), n in bonded.items():
+    i = O.interactions[a, b]
+    share[n][1] += 1
+    share[n][0] += i is None or not i.isReal or i.phys.broken
+dump({"iters": solver.totalIterations, "relax": solver.relaxationIterations, "holds": solver.mechanismHolds,
+      "last": list(solver.stepUnbalanced)[-1], "broken_pct": {n: 100.0 * b / t for n, (b, t) in share.items()}})
+"""
+
+
+def test_discs_in_a_mechanism_slide_by_elastic_moves_instead_of_jumping(yade_run):
+    # 40 mm ISR elastic with damage, seed 1 (2550 discs; 68 % of the ITZ breaks). A disc whose broken
+    # contacts all slide has no stiffness across them in the exact tangent: its Newton move is 10 to
+    # 300 radii and the step ends in relaxation. Measured: with mechanismMove 1e-2 (its sliding
+    # contacts taken as sticking; 83 discs held) 2,098 iterations, 1,422 of them relaxation; with 0
+    # (never) 3,266 and 2,372; broken % MORTAR / ITZ / AGG 2.67 / 68.19 / 4.00 against
+    # 2.60 / 69.13 / 4.17, within the seed-to-seed spread of the ADR (docs/performance.md, section
+    # 1b). The bounds: at most 0.8 of the iterations (measured 0.64) and 3 points of each kind.
+    held = yade_run(MECHANISM, 1e-2, threads=1)
+    free = yade_run(MECHANISM, 0.0, threads=1)
+    print("measured", held, free)
+    assert free["holds"] == 0 and held["holds"] > 0
+    assert held["iters"] < 0.8 * free["iters"] and held["relax"] < free["relax"]
+    for kind, pct in held["broken_pct"].items():
+        assert abs(pct - free["broken_pct"][kind]) < 3.0, kind
+    assert held["broken_pct"]["ITZ"] > 50, "the specimen must crack for this test to test anything"
 
 
 # Three discs in a row, a (held) - b (free in x) - c (held): contact a-b MORTAR (f_t A = 4000 N),

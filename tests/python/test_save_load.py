@@ -103,7 +103,6 @@ def run_to_end(solver):
 if mode in ("reference", "plain"):
     test = scenario.SwellingTest(scenario="isr", behaviour="viscoelastic", damage=True, size_mm=[12.0, 12.0], seed=1,
                                  parameters="paper-micro", steps_per_decade=5)
-    # built directly: the scenarios refuse the implicit solver with damage
     kinds = scenario.make_kinds(test)
     solver = dem.make_solver(solver_name, tStart=test.t_start_days, tEnd=test.t_end, stepsPerDecade=test.steps_per_decade,
                              verbose=False)
