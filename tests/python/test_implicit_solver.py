@@ -237,18 +237,24 @@ except Exception as e:
     assert res["err"] and "2D solver" in res["err"] and "3D sphere packings are not supported" in res["err"]
 
 
+# A cracking specimen (ISR, elastic, damage on, paper-micro values, 10 steps a decade, seed 1) under
+# `solver` at `tol` (0: its own), SIZE x SIZE mm; MOVE sets the implicit solver's mechanismMove
+# ("-": its default). Reports iterations, relaxation iterations, mechanism holds and the broken share
+# of each kind among the contacts bonded at the start.
 CRACKING = r"""
-import sys, time
+import sys
 from swelldem import scenario, meso, dem, paper
-solver_name, tol = sys.argv[1], float(sys.argv[2])
-test = scenario.SwellingTest(scenario="isr", behaviour="elastic", damage=True, size_mm=[20.0, 20.0], seed=1,
+solver_name, tol, size, move = sys.argv[1], float(sys.argv[2]), float(sys.argv[3]), sys.argv[4]
+test = scenario.SwellingTest(scenario="isr", behaviour="elastic", damage=True, size_mm=[size, size], seed=1,
                              parameters="paper-micro", steps_per_decade=10)
 kinds = scenario.make_kinds(test)   # built from the scenarios' pieces, to count the solver's own iterations
 settings = dict(tStart=test.t_start_days, tEnd=test.t_end, stepsPerDecade=test.steps_per_decade, verbose=False)
 if tol:
     settings["tolerance"] = tol
+if move != "-":
+    settings["mechanismMove"] = float(move)
 solver = dem.make_solver(solver_name, **settings)
-assembly = meso.generate(seed=1, width_mm=20.0, height_mm=20.0)
+assembly = meso.generate(seed=1, width_mm=size, height_mm=size)
 scenario.set_swelling(test, kinds, test.eps_inf * 2 * float(assembly.r.mean()))
 dem.to_yade(assembly, kinds, solver)
 bonded = {(i.id1, i.id2): i.phys.kind.name for i in O.interactions if i.isReal and not i.phys.broken}
@@ -260,7 +266,7 @@ for (a, b), n in bonded.items():
     share[n][1] += 1
     share[n][0] += i is None or not i.isReal or i.phys.broken
 dump({"iters": solver.totalIterations, "relax": getattr(solver, "relaxationIterations", 0),
-      "broken_pct": {n: 100.0 * b / t for n, (b, t) in share.items()}})
+      "holds": getattr(solver, "mechanismHolds", 0), "broken_pct": {n: 100.0 * b / t for n, (b, t) in share.items()}})
 """
 
 
@@ -271,38 +277,13 @@ def test_cracking_specimen_settles_by_newton_and_breaks_as_the_adr(yade_run):
     # with the coupling left out and no relaxation); broken % MORTAR / ITZ / AGG 0.73 / 74.44 / 5.82
     # against the ADR's 1.58 / 75.19 / 5.14 at tolerance 1e-5 and 0.73 / 72.93 / 6.16 at 1e-6: the
     # ADR's own tolerance moves them by up to 2.3 points, the bound is 3.
-    imp = yade_run(CRACKING, "implicit", 0, threads=1)
-    adr = yade_run(CRACKING, "adr", 1e-5, threads=1)
+    imp = yade_run(CRACKING, "implicit", 0, 20, "-", threads=1)
+    adr = yade_run(CRACKING, "adr", 1e-5, 20, "-", threads=1)
     print("measured", imp, adr)
     assert imp["relax"] <= 20 and imp["iters"] < 1000
     for kind, pct in imp["broken_pct"].items():
         assert abs(pct - adr["broken_pct"][kind]) < 3.0, kind
     assert imp["broken_pct"]["ITZ"] > 50, "the specimen must crack for this test to test anything"
-
-
-MECHANISM = r"""
-import sys
-from swelldem import scenario, meso, dem, paper
-move = float(sys.argv[1])
-test = scenario.SwellingTest(scenario="isr", behaviour="elastic", damage=True, size_mm=[40.0, 40.0], seed=1,
-                             parameters="paper-micro", steps_per_decade=10)
-kinds = scenario.make_kinds(test)
-solver = dem.make_solver("implicit", tStart=test.t_start_days, tEnd=test.t_end, stepsPerDecade=test.steps_per_decade,
-                         verbose=False, mechanismMove=move)
-assembly = meso.generate(seed=1, width_mm=40.0, height_mm=40.0)
-scenario.set_swelling(test, kinds, test.eps_inf * 2 * float(assembly.r.mean()))
-dem.to_yade(assembly, kinds, solver)
-bonded = {(i.id1, i.id2): i.phys.kind.name for i in O.interactions if i.isReal and not i.phys.broken}
-while not solver.finished:
-    O.run(500, True)
-share = {n: [0, 0] for n in paper.KIND_NAMES}
-for (a, b), n in bonded.items():
-    i = O.interactions[a, b]
-    share[n][1] += 1
-    share[n][0] += i is None or not i.isReal or i.phys.broken
-dump({"iters": solver.totalIterations, "relax": solver.relaxationIterations, "holds": solver.mechanismHolds,
-      "last": list(solver.stepUnbalanced)[-1], "broken_pct": {n: 100.0 * b / t for n, (b, t) in share.items()}})
-"""
 
 
 def test_discs_in_a_mechanism_slide_by_elastic_moves_instead_of_jumping(yade_run):
@@ -313,8 +294,8 @@ def test_discs_in_a_mechanism_slide_by_elastic_moves_instead_of_jumping(yade_run
     # (never) 3,266 and 2,372; broken % MORTAR / ITZ / AGG 2.67 / 68.19 / 4.00 against
     # 2.60 / 69.13 / 4.17, within the seed-to-seed spread of the ADR (docs/performance.md, section
     # 1b). The bounds: at most 0.8 of the iterations (measured 0.64) and 3 points of each kind.
-    held = yade_run(MECHANISM, 1e-2, threads=1)
-    free = yade_run(MECHANISM, 0.0, threads=1)
+    held = yade_run(CRACKING, "implicit", 0, 40, 1e-2, threads=1)
+    free = yade_run(CRACKING, "implicit", 0, 40, 0.0, threads=1)
     print("measured", held, free)
     assert free["holds"] == 0 and held["holds"] > 0
     assert held["iters"] < 0.8 * free["iters"] and held["relax"] < free["relax"]
