@@ -5,6 +5,7 @@
 #include <Eigen/Sparse>
 #include <algorithm>
 #include <cmath>
+#include <omp.h>
 
 namespace yade {
 namespace core = swelldem::core;
@@ -20,6 +21,7 @@ struct ImplicitLinearSystem {
 	std::vector<char>                                  active;     // per contact: its core::ContactLaw::Mode
 	SpMat                                              K;
 	Eigen::CholmodDecomposition<SpMat, Eigen::Lower>   chol;
+	Eigen::MatrixXd                                    Z; // K^-1 U of the sliding coupling's columns (couplingColumns), for the factor in hand
 	int                                                nEq = 0;
 	bool                                               haveFactor = false;
 };
@@ -38,6 +40,16 @@ namespace {
 		}
 	};
 	const PairTable kPairs;
+
+	// Debian's CHOLMOD opens OpenMP regions of a fixed 4 threads inside its supernodal factorization
+	// (its compile-time CHOLMOD_OMP_NUM_THREADS), whatever YADE's -j says. On this 2-core machine
+	// their barriers took a third of a 100 mm damage run (futex waits); serial, the factorizations
+	// cost 25 % less (docs/performance.md, 1b). No active OpenMP level runs them on the calling thread.
+	struct SerialOpenMP {
+		const int levels = omp_get_max_active_levels();
+		SerialOpenMP() { omp_set_max_active_levels(0); }
+		~SerialOpenMP() { omp_set_max_active_levels(levels); }
+	};
 
 	// A real interaction's tangent and its state (core::ContactLaw::Mode; 0 for a stock contact):
 	// kn, ks [N/m] of the state the contact is in, and for a sliding contact the slope of its shear
@@ -220,7 +232,10 @@ void ImplicitLogTimeSolver::newtonStep()
 		if (graph == factoredGraph && factoredValues.size() == size_t(S.K.nonZeros())) {
 			const Eigen::VectorXd current = Eigen::Map<const Eigen::VectorXd>(S.K.valuePtr(), S.K.nonZeros());
 			std::copy(factoredValues.begin(), factoredValues.end(), S.K.valuePtr());
-			S.chol.factorize(S.K);
+			{
+				const SerialOpenMP serial;
+				S.chol.factorize(S.K);
+			}
 			std::copy(current.data(), current.data() + current.size(), S.K.valuePtr());
 			S.haveFactor = S.chol.info() == Eigen::Success;
 		} else
@@ -322,7 +337,10 @@ void ImplicitLogTimeSolver::newtonStep()
 			for (long k = 0; k < nnz; ++k)
 				drift = std::max(drift, std::abs(v[k] - factoredValues[k])), largest = std::max(largest, std::abs(v[k]));
 		if (!S.haveFactor || factoredValues.size() != size_t(nnz) || drift > refactorTolerance * largest || (iterInStep == 1 && pass == 0)) {
-			S.chol.factorize(S.K);
+			{
+				const SerialOpenMP serial;
+				S.chol.factorize(S.K);
+			}
 			++factorizations;
 			if (S.chol.info() != Eigen::Success)
 				fail("the tangent stiffness (" + std::to_string(S.nEq) + " equations) is not positive definite; CHOLMOD could not factor it");
@@ -333,12 +351,31 @@ void ImplicitLogTimeSolver::newtonStep()
 		// 4. Solve, move the bodies through their velocities.
 		du = S.chol.solve(r);
 		if (!sliding.empty() && long(sliding.size()) <= maxSlidingExact) {
-			const long      m = long(sliding.size());
-			Eigen::MatrixXd U = Eigen::MatrixXd::Zero(S.nEq, m);
+			// Z = K^-1 U costs one solve per column. While the factor is the same and the same contacts
+			// slide, the Z made for them is kept: the coupling then enters as it was when Z was made, as
+			// the tangent does under a kept factor (measured: half the Woodbury solves of a 100 mm damage
+			// run are such repeats). The columns are saved, so that a reloaded scene rebuilds the same Z.
+			const long       m = long(sliding.size());
+			std::vector<int> equations(6 * m);
 			for (long j = 0; j < m; ++j)
-				for (int k = 0; k < 6; ++k)
-					if (sliding[j].eq[k] >= 0) U(sliding[j].eq[k], j) += sliding[j].u[k];
-			const Eigen::MatrixXd Z = S.chol.solve(U); // K^-1 U
+				std::copy(sliding[j].eq, sliding[j].eq + 6, &equations[6 * j]);
+			const bool keep = equations == couplingEquations && couplingFactorization == factorizations
+			                  && couplingColumns.size() == size_t(6 * m);
+			if (!keep) {
+				couplingEquations.swap(equations);
+				couplingColumns.resize(6 * m);
+				for (long j = 0; j < m; ++j)
+					std::copy(sliding[j].u, sliding[j].u + 6, &couplingColumns[6 * j]);
+				couplingFactorization = factorizations;
+			}
+			if (!keep || S.Z.cols() != m || S.Z.rows() != S.nEq) {
+				Eigen::MatrixXd U = Eigen::MatrixXd::Zero(S.nEq, m);
+				for (long j = 0; j < m; ++j)
+					for (int k = 0; k < 6; ++k)
+						if (couplingEquations[6 * j + k] >= 0) U(couplingEquations[6 * j + k], j) += couplingColumns[6 * j + k];
+				S.Z = S.chol.solve(U);
+			}
+			const Eigen::MatrixXd& Z = S.Z;
 			auto vDot = [&](const SlidingCoupling& sc, const auto& x) {
 				Real s = 0;
 				for (int k = 0; k < 6; ++k)

@@ -65,6 +65,11 @@ public:
 	  "Discs whose sliding contacts enter the tangent as sticking in the current round (mechanismMove) [-]")                                        \
 	X(std::vector<Real>, factoredValues, std::vector<Real>(), swelldem_attr::Internal,                                                                 \
 	  "Entries of the tangent that the current Cholesky factor was computed from (kept so that a reloaded scene factors the same) [N/m; N, N m with rotations]")       \
+	X(std::vector<int>, couplingEquations, std::vector<int>(), swelldem_attr::Internal,                                                               \
+	  "Equations (6 per sliding contact, -1 where held) of the sliding coupling's columns that the kept K^-1 U was made for [-]")                  \
+	X(std::vector<Real>, couplingColumns, std::vector<Real>(), swelldem_attr::Internal,                                                               \
+	  "Entries (6 per sliding contact) of the sliding coupling's columns U that the kept K^-1 U was made for [N/m; N with rotations]")           \
+	X(long, couplingFactorization, -1, swelldem_attr::Internal, "Factorization count at which the kept K^-1 U was made (-1: none) [-]")            \
 	X(std::vector<int>, factoredGraph, std::vector<int>(), swelldem_attr::Internal,                                                                    \
 	  "Body ids (2 per contact) of the contacts the tangent's sparsity pattern was made for [-]")                                                 \
 	X(bool, relaxing, false, swelldem_attr::Internal, "The step is in a dynamic relaxation phase [-]")                                                  \
