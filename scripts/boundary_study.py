@@ -41,6 +41,7 @@ def parse(argv):
     p.add_argument("--seed", type=int, default=1, help="mesostructure seed")
     p.add_argument("--steps-per-decade", type=float, default=3.0, help="physical steps per decade [1/decade]")
     p.add_argument("--out", default="out/boundaries", help="output folder")
+    scenario.add_solver_argument(p)
     return p.parse_args(argv)
 
 
@@ -86,18 +87,18 @@ def check(a):
                 name = f"{sc}-{beh[:2]}-{bx.replace(':', '')}"
                 tests[sc, beh, label] = scenario.SwellingTest(
                     scenario=sc, behaviour=beh, size_mm=tuple(a.size_mm), seed=a.seed, steps_per_decade=a.steps_per_decade,
-                    boundary_x=bx, out=os.path.join(a.out, name))
+                    solver=a.solver, boundary_x=bx, out=os.path.join(a.out, name))
             # the load alone (no swelling, eps_inf 0): laboratories subtract it, measured on a
             # non-reactive companion, to give the expansion due to the reaction
             for label, bx in CASES:
                 if bx.startswith("stress"):
                     tests[sc, beh, label + ", load only"] = scenario.SwellingTest(
                         scenario=sc, behaviour=beh, size_mm=tuple(a.size_mm), seed=a.seed, steps_per_decade=a.steps_per_decade,
-                        boundary_x=bx, eps_inf=0.0, out=os.path.join(a.out, f"{sc}-{beh[:2]}-{bx.replace(':', '')}-loadonly"))
+                        solver=a.solver, boundary_x=bx, eps_inf=0.0, out=os.path.join(a.out, f"{sc}-{beh[:2]}-{bx.replace(':', '')}-loadonly"))
             # the restrained specimen without damage too: the hand estimate knows no cracking
             tests[sc, beh, "restrained, no damage"] = scenario.SwellingTest(
                 scenario=sc, behaviour=beh, size_mm=tuple(a.size_mm), seed=a.seed, steps_per_decade=a.steps_per_decade,
-                boundary_x="fixed", damage=False, out=os.path.join(a.out, f"{sc}-{beh[:2]}-fixed-nodmg"))
+                solver=a.solver, boundary_x="fixed", damage=False, out=os.path.join(a.out, f"{sc}-{beh[:2]}-fixed-nodmg"))
     for t in tests.values():  # every run's options before any work
         t.validate()
 

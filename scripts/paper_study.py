@@ -4,10 +4,11 @@ aging viscoelastic x without, with damage) on one specimen size, then its Tables
 3.7 next to the paper's values and its figures, all in one folder with an index.md.
 
   /usr/bin/python3 scripts/paper_study.py --size-mm W H --jobs N --out DIR [--seed S] [--steps-per-decade K]
+      [--solver adr|implicit]
 
 Each run is scripts/swelling_test.py in its own process (scripts/yade-swelldem -j 1), N at a time,
 into DIR/<scenario>-<el|ve>-<nodmg|dmg>/ with its log DIR/<run>.log. Resumable: a run whose
-results.json says 'finished' with the same size, seed and steps per decade is kept, any other
+results.json says 'finished' with the same size, seed, steps per decade and solver is kept, any other
 (failed, interrupted, killed, absent) runs again; a finished run of other settings in DIR stops the
 study before any work (choose another DIR). Ctrl-C or SIGTERM stops the running jobs (their
 results.json says 'interrupted'); the next call goes on from there. Progress: one line per run
@@ -17,7 +18,8 @@ DIR then holds index.md (the runs, the three tables, the figures and the paper's
 matches), tables.md, study.csv and per scenario <scenario>_strain.png, <scenario>_unbalanced_nodmg.png,
 <scenario>_unbalanced_dmg.png, <scenario>_forces_nodmg.png, <scenario>_forces_dmg.png
 (docs/paper-study.md). Exit status 0 when every run finished, 1 when one did not (the tables and
-figures show what there is), 2 for bad options (before any work)."""
+figures show what there is), 2 for bad options (before any work). The solver is the paper's ADR
+unless --solver implicit."""
 import argparse
 import csv
 import json
@@ -29,7 +31,7 @@ import time
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, "py"))
-from swelldem import options, paper, report  # noqa: E402
+from swelldem import options, paper, report, scenario  # noqa: E402
 from swelldem.scenario import SwellingTest  # noqa: E402
 
 LAUNCHER = os.path.join(REPO, "scripts", "yade-swelldem")
@@ -52,7 +54,7 @@ def split(name):
 
 
 def settings_of(a):
-    return {"size_mm": [float(v) for v in a.size_mm], "seed": a.seed, "steps_per_decade": float(a.steps_per_decade)}
+    return {"size_mm": [float(v) for v in a.size_mm], "seed": a.seed, "steps_per_decade": float(a.steps_per_decade), "solver": a.solver}
 
 
 def check(a):
@@ -62,7 +64,7 @@ def check(a):
     options.number("steps_per_decade", a.steps_per_decade, lo=0, hi=STEPS_PER_DECADE_MAX, hi_incl=True,
                    allowed=f"0 < steps_per_decade <= {STEPS_PER_DECADE_MAX} [1/decade]")
     # the swelling test's own checks (size, seed, the mesostructure generator's limits)
-    SwellingTest(size_mm=tuple(a.size_mm), seed=a.seed, steps_per_decade=a.steps_per_decade, out=a.out).validate()
+    SwellingTest(size_mm=tuple(a.size_mm), seed=a.seed, steps_per_decade=a.steps_per_decade, solver=a.solver, out=a.out).validate()
     if os.path.exists(a.out) and not os.path.isdir(a.out):
         options.bad("out", a.out, "a folder (new, or one of an earlier call with the same settings)")
     want = settings_of(a)
@@ -70,7 +72,8 @@ def check(a):
         got = finished_settings(os.path.join(a.out, name))
         if got is not None and got != want:
             options.bad("out", a.out, f"a new folder or one of a study with the same settings: {name} there finished with "
-                                      f"size_mm {got['size_mm']}, seed {got['seed']}, steps_per_decade {got['steps_per_decade']:g}")
+                                      f"size_mm {got['size_mm']}, seed {got['seed']}, steps_per_decade {got['steps_per_decade']:g}, "
+                                      f"solver {got['solver']}")
 
 
 def finished_settings(folder):
@@ -84,14 +87,14 @@ def finished_settings(folder):
         return None
     cfg = res.get("config") or {}
     return {"size_mm": [float(v) for v in cfg.get("size_mm", ())], "seed": cfg.get("seed"),
-            "steps_per_decade": float(cfg.get("steps_per_decade", float("nan")))}
+            "steps_per_decade": float(cfg.get("steps_per_decade", float("nan"))), "solver": cfg.get("solver")}
 
 
 def command(name, a):
     sc, b, d = split(name)
     cmd = [LAUNCHER, "-j", "1", "-n", "-x", SCRIPT, "--scenario", sc, "--behaviour", paper.BEHAVIOUR_KEYS[b],
            "--size-mm", f"{a.size_mm[0]:g}", f"{a.size_mm[1]:g}", "--seed", str(a.seed),
-           "--steps-per-decade", f"{a.steps_per_decade:g}", "--out", os.path.join(a.out, name)]
+           "--steps-per-decade", f"{a.steps_per_decade:g}", "--solver", a.solver, "--out", os.path.join(a.out, name)]
     return cmd + (["--no-damage"] if d == "nodmg" else [])
 
 
@@ -229,11 +232,11 @@ def report_study(a):
     all_done = len(runs) == 12 and all(report.run_state(r) == "finished" for r in runs.values())
     index = [f"# The paper's study at {a.size_mm[0]:g} x {a.size_mm[1]:g} mm", "",
              f"12 swelling tests (scripts/swelling_test.py), seed {a.seed}, {a.steps_per_decade:g} steps a decade, "
-             f"ADR tolerance 1e-4. {report.size_note({'config': {'size_mm': a.size_mm}})} "
+             f"{'ADR tolerance 1e-4' if a.solver == 'adr' else 'implicit solver (exact equilibria)'}. {report.size_note({'config': {'size_mm': a.size_mm}})} "
              f"{'Every run finished.' if all_done else 'Not every run finished: see the status column and the runs logs (<run>.log).'}",
              "", "Command: `" + " ".join(["/usr/bin/python3", "scripts/paper_study.py", "--size-mm", f"{a.size_mm[0]:g}", f"{a.size_mm[1]:g}",
                                            "--jobs", str(a.jobs), "--out", a.out, "--seed", str(a.seed),
-                                           "--steps-per-decade", f"{a.steps_per_decade:g}"]) + "`", "",
+                                           "--steps-per-decade", f"{a.steps_per_decade:g}", "--solver", a.solver]) + "`", "",
              "## Tables", "", tables, "", "## Figures", ""]
     for sc, made in figures:
         index += [f"### {report.LABEL[sc]}", ""]
@@ -260,6 +263,9 @@ def main(argv):
     ap.add_argument("--out", required=True, help="folder of the study (made if absent; an earlier call's folder resumes it)")
     ap.add_argument("--seed", type=int, default=1, help="seed of the mesostructure, the same for the 12 runs [-]")
     ap.add_argument("--steps-per-decade", type=float, default=10.0, help="physical steps per decade of log time [1/decade]")
+    # The study reproduces the paper, its method included; the implicit solver runs it in a fraction
+    # of the time, with broken shares within the ADR's seed-to-seed spread (docs/performance.md, 1b).
+    scenario.add_solver_argument(ap, default="adr")
     a = ap.parse_args(argv)
     with options.refuse_bad("paper_study.py"):  # exit status 2, as argparse's, before any work
         check(a)

@@ -27,6 +27,7 @@ def parse(argv):
     p.add_argument("--steps-per-decade", type=float, default=3.0, help="physical steps per decade [1/decade]")
     p.add_argument("--behaviour", default="viscoelastic", choices=scenario.BEHAVIOURS, help="contacts")
     p.add_argument("--out", default="out/rebar", help="output folder")
+    scenario.add_solver_argument(p)
     return p.parse_args(argv)
 
 
@@ -39,7 +40,7 @@ def main(argv):
         a = parse(argv)
         options.numbers("size_mm", a.size_mm, count=2, lo=0, unit="mm", allowed="two finite lengths > 0 [mm]")
         tests = {(sc, rho): scenario.SwellingTest(scenario=sc, behaviour=a.behaviour, size_mm=tuple(a.size_mm), seed=a.seed,
-                                                  steps_per_decade=a.steps_per_decade, rebar_ratio=rho,
+                                                  steps_per_decade=a.steps_per_decade, rebar_ratio=rho, solver=a.solver,
                                                   out=os.path.join(a.out, f"{sc}-rho{rho:g}"))
                  for sc in SCENARIOS for rho in RATIOS}
         for t in tests.values():

@@ -22,6 +22,8 @@ import time
 import numpy as np
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(REPO, "py"))
+from swelldem import scenario  # noqa: E402
 #: Test ages [day]: Larive's xi about 0.32 and 0.65 (tau_L, tau_c of paper.KINETICS), and the end.
 AGES = {"isr": (80, 130, 3650), "asr-fine": (4000, 7000, 50000), "asr-coarse": (4000, 7000, 50000)}
 SCENARIOS = ("isr", "asr-fine", "asr-coarse")
@@ -36,6 +38,7 @@ ap.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3], help="mesostr
 ap.add_argument("--scenarios", nargs="+", default=list(SCENARIOS), choices=SCENARIOS)
 ap.add_argument("--behaviours", nargs="+", default=list(BEHAVIOURS), choices=BEHAVIOURS)
 ap.add_argument("--out", default="out/residual_study", help="output folder")
+scenario.add_solver_argument(ap)
 ap.add_argument("--test-options", nargs=argparse.REMAINDER, default=[],
                 help="the rest of the line goes to residual_properties.py (e.g. --strain-step-tension 6e-6)")
 ap.add_argument("--plots-only", action="store_true", help="only gather the runs made and plot")
@@ -55,7 +58,7 @@ if not args.plots_only:
             continue
         os.makedirs(out, exist_ok=True)
         cmd = [os.path.join(REPO, "scripts", "yade-swelldem"), "-j", "1", "-n", "-x", os.path.join(REPO, "scripts", "residual_properties.py"),
-               "--scenario", sc, "--behaviour", beh, "--size-mm", *[f"{v:g}" for v in args.size_mm], "--seed", str(seed),
+               "--scenario", sc, "--behaviour", beh, "--size-mm", *[f"{v:g}" for v in args.size_mm], "--seed", str(seed), "--solver", args.solver,
                "--test-ages", *[str(a) for a in AGES[sc]], "--reference-cache", os.path.join(args.out, "reference_cache"), "--out", out] + args.test_options
         t0 = time.time()
         with open(os.path.join(out, "log.txt"), "w") as log:

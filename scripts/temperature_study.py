@@ -30,6 +30,7 @@ ap.add_argument("--temperatures-c", type=float, nargs="+", default=[23.0, 38.0, 
 ap.add_argument("--size-mm", type=float, nargs=2, default=(30.0, 30.0), metavar=("W", "H"), help="specimen size [mm]")
 ap.add_argument("--seed", type=int, default=1, help="mesostructure seed (the same specimen at every temperature)")
 ap.add_argument("--out", default="out/temperature", help="output folder")
+scenario.add_solver_argument(ap)
 args = ap.parse_args()
 
 
@@ -40,7 +41,7 @@ def run_name(T):
 with options.refuse_bad("temperature_study.py"):
     if len(set(args.temperatures_c)) != len(args.temperatures_c):
         options.bad("temperatures_c", tuple(args.temperatures_c), "distinct temperatures")
-    tests = {T: scenario.SwellingTest(scenario="asr-fine", temperature_c=T, size_mm=tuple(args.size_mm), seed=args.seed,
+    tests = {T: scenario.SwellingTest(scenario="asr-fine", temperature_c=T, size_mm=tuple(args.size_mm), seed=args.seed, solver=args.solver,
                                       out=os.path.join(args.out, run_name(T))) for T in args.temperatures_c}
     for t in tests.values():
         t.validate()

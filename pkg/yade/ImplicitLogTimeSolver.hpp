@@ -93,6 +93,12 @@ private:
 	std::vector<Real> bodyRadius; // per body, the largest radius its real contacts give it (0: none); this iteration's
 	void                                  choosePins();
 	void                                  newtonStep();
+	// the parts of a Newton iteration, on sys
+	void                                  numberEquations();                  // equations, pattern and analysis when the graph changed
+	void                                  assembleTangent(bool firstPass);    // K's values; the sliding couplings; activeChanges
+	void                                  factorIfChanged(bool freshFactor);  // a new factor unless K is within refactorTolerance of it
+	Eigen::Matrix<Real, Eigen::Dynamic, 1> solveWithCoupling(const Eigen::Matrix<Real, Eigen::Dynamic, 1>& r); // K^-1 r, Woodbury for the coupling
+	long                                  holdMechanisms(const Eigen::Matrix<Real, Eigen::Dynamic, 1>& du); // discs newly held (mechanismMove)
 	void                                  moveBodies(Real fraction); // by fraction x lineMove, through the velocities
 	Real                                  residualMerit();           // |r| over the free DOFs, torques over the radius [N]; sets bodyRadius
 	std::unique_ptr<ImplicitLinearSystem> sys; // not saved: rebuilt from the scene, it gives the same factor

@@ -38,6 +38,7 @@ import time
 from dataclasses import MISSING, asdict, dataclass, field, fields
 
 from . import options, paper
+from .dem import SOLVERS
 
 BEHAVIOURS = ("elastic", "viscoelastic")
 PARAMETERS = ("paper-micro", "macro")
@@ -65,7 +66,8 @@ class SwellingTest:
                           sets="ContactKind.damage")
     size_mm: tuple = _field((30.0, 30.0), "specimen width and height", unit="mm")
     seed: int = _field(1, "mesostructure seed (integer >= 0)")
-    solver: str = _field("adr", "quasi-static solver: adr (adaptive dynamic relaxation) or implicit", choices=("adr", "implicit"))
+    solver: str = _field("implicit", "quasi-static solver: implicit (each step's exact equilibrium by Newton and a sparse Cholesky factor) "
+                         "or adr (adaptive dynamic relaxation, the paper's method)", choices=tuple(SOLVERS))
     steps_per_decade: float = _field(10.0, "physical steps per decade of log time", sets="solver.stepsPerDecade")
     tolerance: float = _field(0.0, "unbalanced-force ratio at which a step has converged (0: the solver's own, 1e-4 adr, 1e-10 implicit)",
                               sets="solver.tolerance")
@@ -113,7 +115,7 @@ class SwellingTest:
             _bad("behaviour", self.behaviour, ", ".join(BEHAVIOURS))
         if self.parameters not in PARAMETERS:
             _bad("parameters", self.parameters, ", ".join(PARAMETERS))
-        options.choice("solver", self.solver, ("adr", "implicit"))
+        options.choice("solver", self.solver, tuple(SOLVERS))
         if not isinstance(self.damage, bool):
             _bad("damage", self.damage, "True, False")
         try:
@@ -266,6 +268,14 @@ def add_arguments(parser):
         else:
             parser.add_argument(flag, dest=f.name, type=m["type"] or type(default), default=default, choices=m["choices"],
                                 help=help_text + f" (default {default})")
+
+
+def add_solver_argument(parser, default=None):
+    """Adds --solver, as the SwellingTest field has it, to a study's parser. default: the field's, or a
+    study's own (paper_study.py keeps the paper's ADR)."""
+    f = next(f for f in fields(SwellingTest) if f.name == "solver")
+    default = default or f.default
+    parser.add_argument("--solver", default=default, choices=f.metadata["choices"], help=f.metadata["help"] + f" (default {default})")
 
 
 def from_arguments(ns):

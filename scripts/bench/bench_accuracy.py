@@ -91,7 +91,7 @@ def worker(a):
     scene.run_to_end = timed
     t0 = time.time()
     test = scenario.SwellingTest(scenario=a.scenario, behaviour=a.behaviour, damage=a.damage, size_mm=(a.size_mm, a.size_mm),
-                                 seed=a.seed, steps_per_decade=c["steps_per_decade"], tolerance=c["tolerance"],
+                                 seed=a.seed, solver="adr", steps_per_decade=c["steps_per_decade"], tolerance=c["tolerance"],
                                  kelvin_units_per_decade=c["kelvin_units_per_decade"], t_end_days=a.t_end_days, out=a.run_dir)
     res = scenario.run(test)
     import yade

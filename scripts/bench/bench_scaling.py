@@ -52,7 +52,7 @@ def worker(a):
     out = {"size_mm": a.size_mm, "threads": O.numThreads, "damage": not a.no_damage, "load_start": os.getloadavg()}
     t0 = time.time()
     test = scenario.SwellingTest(scenario="isr", behaviour=a.behaviour, damage=not a.no_damage, size_mm=(a.size_mm, a.size_mm), seed=a.seed,
-                                 out="/dev/null")
+                                 solver="adr", out="/dev/null")
     assembly = meso.generate(seed=test.seed, width_mm=a.size_mm, height_mm=a.size_mm)
     out["generate_s"] = time.time() - t0
     out["mem_after_generate_MB"] = vm()

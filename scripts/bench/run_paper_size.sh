@@ -1,7 +1,7 @@
 #!/bin/sh
 # SPDX-License-Identifier: GPL-2.0-or-later
 # The paper-size swelling test timed end to end (issue 7): 100 x 100 mm, ISR, aging viscoelastic
-# contacts, damage on, 10 steps a decade, tolerance 1e-4, as scripts/swelling_test.py runs it.
+# contacts, damage on, 10 steps a decade, the ADR at tolerance 1e-4, as scripts/swelling_test.py runs it.
 #
 #   sh scripts/bench/run_paper_size.sh [OUT [THREADS]]      (default out/paper100/isr-ve-dmg, 1 thread)
 #
@@ -16,7 +16,7 @@ mkdir -p "$(dirname "$OUT")"
 cd "$REPO" || exit 2
 echo "run_paper_size: start $(date -u +%FT%TZ), load $(cut -d' ' -f1-3 /proc/loadavg), $THREADS thread(s), out $OUT"
 /usr/bin/time -v -o "$OUT.time" "$REPO/scripts/yade-swelldem" -n -j "$THREADS" -x "$REPO/scripts/swelling_test.py" \
-	--scenario isr --behaviour viscoelastic --size-mm 100 100 --seed 1 --steps-per-decade 10 --tolerance 1e-4 \
+	--scenario isr --behaviour viscoelastic --size-mm 100 100 --seed 1 --steps-per-decade 10 --solver adr --tolerance 1e-4 \
 	--out "$OUT" >"$OUT.log" 2>&1
 rc=$?
 echo "run_paper_size: end $(date -u +%FT%TZ), exit $rc, load $(cut -d' ' -f1-3 /proc/loadavg)"

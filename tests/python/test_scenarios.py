@@ -52,9 +52,10 @@ def test_output_contract(isr_runs):
     assert "swelldem: step 1/" in proc.stdout and "left ~" in proc.stdout
     # the total at the end: the steps, the solver's iterations (those results.json counts) and the wall time
     n = len(res["times_days"])
-    assert f"swelldem: finished: {n} physical steps to t = 3650 d, {res['adr_iterations']} ADR iterations, " in proc.stdout
+    name = {"adr": "ADR", "implicit": "Newton"}[res["solver"]]
+    assert f"swelldem: finished: {n} physical steps to t = 3650 d, {res['adr_iterations']} {name} iterations, " in proc.stdout
     assert all(u <= 1e-4 * 1.0000001 or u == 0 for u in res["unbalanced_ratio"])
-    assert res["solver"] == "adr"
+    assert res["solver"] == "implicit"  # the default
     assert res["calibration"]["run"] is False  # paper-micro does not use beta: no second simulation
 
 
@@ -245,7 +246,7 @@ def test_implicit_solver_agrees_with_the_adr_at_a_tight_tolerance(tmp_path, scen
     0.1 % of the kind's force range (measured at 40 mm: 0.074 % at most, docs/performance.md 1b)."""
     args = ("--scenario", scenario, "--behaviour", "viscoelastic", "--no-damage")
     imp, _ = swelling_test(tmp_path / "implicit", *args, "--solver", "implicit")
-    adr, _ = swelling_test(tmp_path / "adr", *args, "--tolerance", "1e-8")
+    adr, _ = swelling_test(tmp_path / "adr", *args, "--solver", "adr", "--tolerance", "1e-8")
     assert imp["solver"] == "implicit" and imp["status"] == "finished" and imp["tolerance"] == 1e-10
     assert imp["adr_iterations"] * 20 < adr["adr_iterations"]
     for k in ("swelling_strain_x", "swelling_strain_y"):
@@ -266,7 +267,7 @@ def test_implicit_solver_with_damage_cracks_as_the_adr(tmp_path):
     seed-to-seed spread and at 100 mm the strains within 0.2 % (docs/performance.md, section 1b)."""
     args = ("--scenario", "isr", "--behaviour", "elastic", "--steps-per-decade", "10")
     imp, _ = swelling_test(tmp_path / "implicit", *args, "--solver", "implicit")
-    adr, _ = swelling_test(tmp_path / "adr", *args)
+    adr, _ = swelling_test(tmp_path / "adr", *args, "--solver", "adr")
     print("measured", {k: (imp[f"broken_{k}"][-1], adr[f"broken_{k}"][-1], imp["n_contacts_by_kind"][k]) for k in imp["n_contacts_by_kind"]},
           imp["swelling_strain_x"][-1], adr["swelling_strain_x"][-1], imp["adr_iterations"], adr["adr_iterations"])
     assert imp["solver"] == "implicit" and imp["status"] == "finished"
