@@ -4,6 +4,8 @@
 #include <Eigen/CholmodSupport>
 #include <Eigen/Sparse>
 #include <algorithm>
+#include <map>
+#include <tuple>
 #include <cmath>
 #include <omp.h>
 
@@ -21,17 +23,27 @@ struct ImplicitLinearSystem {
 	std::vector<char>                                  active;     // per contact: its core::ContactLaw::Mode
 	SpMat                                              K;
 	Eigen::CholmodDecomposition<SpMat, Eigen::Lower>   chol;
-	Eigen::MatrixXd                                    Z; // K^-1 U of the sliding coupling's columns (couplingColumns), for the factor in hand
+	std::vector<Eigen::VectorXd>                       z; // K^-1 u of each kept low-rank column (lowRankKeys), for the factor in hand
 	int                                                nEq = 0;
 	bool                                               haveFactor = false;
-	// This iteration's: the real contacts, the discs in a mechanism, the sliding contacts' coupling
-	struct SlidingCoupling {
+	// A column pair (u, v) of the tangent J = K_factored + sum u v^T: a contact whose stiffness
+	// changed since the factor was made (type 0 normal, 1 shear: u = dk b, v = b) or a sliding
+	// contact's shear-normal coupling (type 2: u = slide bs, v = bn).
+	struct Column {
+		int  id1, id2, type;
+		Real value; // the change dk or the slope [N/m]
 		int  eq[6];
 		Real u[6], v[6];
 	};
+	// This iteration's: the real contacts, the discs in a mechanism, the columns, each contact's
+	// (kn, ks) in its current state and the contacts whose (kn, ks) differ from the factored ones
 	std::vector<const Interaction*> contacts;
 	std::vector<char>               mech;
-	std::vector<SlidingCoupling>    sliding;
+	std::vector<Column>             columns;
+	std::vector<Real>               stiffness;
+	long                            changed = 0;
+	std::vector<Real>               deltaDiag; // per equation, the diagonal change of the changed contacts
+	std::vector<int>                touched;   // the equations deltaDiag touches
 	// a contact's 6 equations over (x1, y1, rz1, x2, y2, rz2), -1 where held
 	void equationsOf(const Interaction* I, int eq[6]) const
 	{
@@ -119,6 +131,7 @@ void ImplicitLogTimeSolver::postLoad()
 	core::require(mechanismMove >= 0 && mechanismMove < 1, "ImplicitLogTimeSolver.mechanismMove", mechanismMove, "0 <= mechanismMove < 1");
 	core::require(newtonLimit >= 1, "ImplicitLogTimeSolver.newtonLimit", newtonLimit, ">= 1");
 	core::require(maxSlidingExact >= 0, "ImplicitLogTimeSolver.maxSlidingExact", maxSlidingExact, ">= 0");
+	core::require(lowRankChanges >= 0, "ImplicitLogTimeSolver.lowRankChanges", lowRankChanges, ">= 0");
 	core::requireOpenInterval("ImplicitLogTimeSolver.relaxTolerance", relaxTolerance, 0, 1);
 	core::require(stallTolerance >= 0 && stallTolerance < 1, "ImplicitLogTimeSolver.stallTolerance", stallTolerance, "0 <= stallTolerance < 1");
 }
@@ -241,22 +254,29 @@ void ImplicitLogTimeSolver::numberEquations()
 		std::copy(current.data(), current.data() + current.size(), S.K.valuePtr());
 		S.haveFactor = S.chol.info() == Eigen::Success;
 	} else
-		factoredValues.clear();
+		factoredValues.clear(), factoredStiffness.clear();
 	factoredGraph.swap(graph);
 	S.active.assign(contacts.size(), 0);
 	++analyses;
 }
 
-void ImplicitLogTimeSolver::assembleTangent(bool firstPass)
+void ImplicitLogTimeSolver::assembleTangent(bool firstPass, bool exact)
 {
 	// K = sum over contacts of B^T diag(kn, ks) B with, over (x1, y1, rz1, x2, y2, rz2), normal row
 	// (-n, 0, n, 0) and shear row (-t, -r1, t, -r2), t = ez x n (the increments YADE's ScGeom gives
-	// the law). A sliding contact of a disc in a mechanism enters as sticking.
+	// the law). A sliding contact of a disc in a mechanism enters as sticking. Unless exact, a
+	// contact whose (kn, ks) changed since the factor was made enters with its factored ones, and the
+	// change as low-rank columns.
 	ImplicitLinearSystem& S = *sys;
 	double*               v = S.K.valuePtr();
 	std::fill(v, v + S.K.nonZeros(), 0.0);
-	long changes = 0;
-	S.sliding.clear();
+	const bool lowRank = !exact && S.haveFactor && factoredStiffness.size() == 2 * S.contacts.size();
+	long       changes = 0;
+	S.deltaDiag.assign(S.nEq, 0.0);
+	S.touched.clear();
+	S.columns.clear();
+	S.stiffness.resize(2 * S.contacts.size());
+	S.changed     = 0;
 	double kScale = 0; // mean step stiffness kn'' of the contacts
 	for (size_t c = 0; c < S.contacts.size(); ++c) {
 		const Interaction* I = S.contacts[c];
@@ -265,21 +285,38 @@ void ImplicitLogTimeSolver::assembleTangent(bool firstPass)
 		Real       kn, ks, slide;
 		const char state = contactTangent(I, kn, ks, slide, S.mech[I->id1] || S.mech[I->id2]);
 		if (firstPass) changes += state != S.active[c], S.active[c] = state;
-		if (kn == 0 && ks == 0) continue;
+		S.stiffness[2 * c] = kn, S.stiffness[2 * c + 1] = ks;
+		Real kA = kn, sA = ks; // into K
+		const bool changedHere = lowRank && (kn != factoredStiffness[2 * c] || ks != factoredStiffness[2 * c + 1]);
+		if (kn == 0 && ks == 0 && !changedHere) continue;
 		const Vector3r& n  = g->normal;
 		const Real      r1 = g->radius1 - 0.5 * g->penetrationDepth, r2 = g->radius2 - 0.5 * g->penetrationDepth;
 		const Real      bn[6] = { -n[0], -n[1], 0, n[0], n[1], 0 };
 		const Real      bs[6] = { n[1], -n[0], -r1, -n[1], n[0], -r2 };
-		if (slide != 0) {
-			ImplicitLinearSystem::SlidingCoupling sc;
-			S.equationsOf(I, sc.eq);
+		auto column = [&](int type, Real value, const Real* a, const Real* b) {
+			ImplicitLinearSystem::Column col { I->id1, I->id2, type, value, {}, {}, {} };
+			S.equationsOf(I, col.eq);
 			for (int k = 0; k < 6; ++k)
-				sc.u[k] = slide * bs[k], sc.v[k] = bn[k];
-			S.sliding.push_back(sc);
+				col.u[k] = value * a[k], col.v[k] = b[k];
+			S.columns.push_back(col);
+		};
+		if (changedHere) {
+			++S.changed;
+			const Real dkn = kn - factoredStiffness[2 * c], dks = ks - factoredStiffness[2 * c + 1];
+			if (dkn != 0) column(0, dkn, bn, bn), kA = factoredStiffness[2 * c];
+			if (dks != 0) column(1, dks, bs, bs), sA = factoredStiffness[2 * c + 1];
+			int eq[6];
+			S.equationsOf(I, eq);
+			for (int k = 0; k < 6; ++k)
+				if (eq[k] >= 0) {
+					if (S.deltaDiag[eq[k]] == 0) S.touched.push_back(eq[k]);
+					S.deltaDiag[eq[k]] += dkn * bn[k] * bn[k] + dks * bs[k] * bs[k];
+				}
 		}
+		if (slide != 0) column(2, slide, bs, bn);
 		const int* slot = &S.slots[21 * c];
 		for (int k = 0; k < 21; ++k)
-			if (slot[k] >= 0) v[slot[k]] += kn * bn[kPairs.a[k]] * bn[kPairs.b[k]] + ks * bs[kPairs.a[k]] * bs[kPairs.b[k]];
+			if (slot[k] >= 0) v[slot[k]] += kA * bn[kPairs.a[k]] * bn[kPairs.b[k]] + sA * bs[kPairs.a[k]] * bs[kPairs.b[k]];
 	}
 	if (firstPass) activeChanges = changes;
 	forEachSpring([&](int id, int axis, Real k) {
@@ -289,6 +326,9 @@ void ImplicitLogTimeSolver::assembleTangent(bool firstPass)
 	// A DOF that no contact holds in the current state (a loose disc, a disc whose contacts are all
 	// open) moves under its own load as if one typical contact held it, so that it can close them.
 	kScale = S.contacts.empty() ? 1.0 : kScale / S.contacts.size();
+	std::vector<Real> raw(S.touched.size());
+	for (size_t i = 0; i < S.touched.size(); ++i)
+		raw[i] = v[S.diagSlot[S.touched[i]]];
 	for (int e = 0; e < S.nEq; ++e) {
 		double& d = v[S.diagSlot[e]];
 		d += d > 0 ? regularization * d : (kScale > 0 ? kScale : 1.0);
@@ -304,23 +344,50 @@ void ImplicitLogTimeSolver::assembleTangent(bool firstPass)
 			const int e = S.dofOf[3 * b->id + 2];
 			if (e >= 0) v[S.diagSlot[e]] *= 1 + rotationRegularization;
 		}
+	// The diagonal shifts above act on the whole diagonal, which the changes' columns do not see: a
+	// DOF whose changes leave it held by nothing (its last contact opened) has kScale in the exact
+	// tangent, not the factored stiffness minus the change, and one that a change holds again loses
+	// its kScale. A diagonal column brings J to the exact entry where the two differ by more than
+	// 1 % (without it J is singular, or far too stiff, along that DOF, and Newton stalls).
+	std::vector<char> isRotation;
+	const Real        kLoose = kScale > 0 ? kScale : 1.0;
+	for (size_t i = 0; i < S.touched.size(); ++i) {
+		const int e = S.touched[i];
+		if (isRotation.empty()) {
+			isRotation.assign(S.nEq, 0);
+			for (const auto& b : scene->bodies->body)
+				if (b && S.dofOf[3 * b->id + 2] >= 0) isRotation[S.dofOf[3 * b->id + 2]] = 1;
+		}
+		const Real d     = raw[i] + S.deltaDiag[e];
+		const Real exact = (d > 1e-9 * std::abs(raw[i]) ? d * (1 + regularization) : d + kLoose) * (isRotation[e] ? 1 + rotationRegularization : 1.0);
+		const Real lowRankEntry = v[S.diagSlot[e]] + S.deltaDiag[e];
+		if (!(std::abs(exact - lowRankEntry) > 1e-2 * std::abs(exact))) continue;
+		ImplicitLinearSystem::Column col { -1 - e, -1, 3, exact - lowRankEntry, { e, -1, -1, -1, -1, -1 }, {}, { 1, 0, 0, 0, 0, 0 } };
+		col.u[0] = col.value;
+		S.columns.push_back(col);
+	}
 }
 
-void ImplicitLogTimeSolver::factorIfChanged(bool freshFactor)
+bool ImplicitLogTimeSolver::needsFactor(bool freshFactor) const
 {
-	// Factor when the tangent changed: a new step of an aging kind, a break, a state change, a
-	// mechanism held. The geometry moving within a step changes the entries by about the strain
-	// increment (1e-5 to 1e-4 of the largest): the factor is kept, and the iteration is a modified
-	// Newton step on YADE's exact residual. Every step starts with a fresh factor (freshFactor), so
-	// that the drift a factor carries is one step's strain, never the run's.
-	ImplicitLinearSystem& S   = *sys;
-	const double*         v   = S.K.valuePtr();
-	const long            nnz = S.K.nonZeros();
-	double                drift = 0, largest = 0;
-	if (S.haveFactor && factoredValues.size() == size_t(nnz))
-		for (long k = 0; k < nnz; ++k)
-			drift = std::max(drift, std::abs(v[k] - factoredValues[k])), largest = std::max(largest, std::abs(v[k]));
-	if (S.haveFactor && factoredValues.size() == size_t(nnz) && drift <= refactorTolerance * largest && !freshFactor) return;
+	// Factor when the tangent changed: a new step of an aging kind, a break, more than lowRankChanges
+	// contacts changing state, a mechanism held. The geometry moving within a step changes the
+	// entries by about the strain increment (1e-5 to 1e-4 of the largest): the factor is kept, and the
+	// iteration is a modified Newton step on YADE's exact residual. Every step starts with a fresh
+	// factor (freshFactor), so that the drift a factor carries is one step's strain, never the run's.
+	const ImplicitLinearSystem& S   = *sys;
+	const double*               v   = S.K.valuePtr();
+	const long                  nnz = S.K.nonZeros();
+	if (!S.haveFactor || factoredValues.size() != size_t(nnz) || freshFactor || S.changed > lowRankChanges) return true;
+	double drift = 0, largest = 0;
+	for (long k = 0; k < nnz; ++k)
+		drift = std::max(drift, std::abs(v[k] - factoredValues[k])), largest = std::max(largest, std::abs(v[k]));
+	return !(drift <= refactorTolerance * largest);
+}
+
+void ImplicitLogTimeSolver::factor()
+{
+	ImplicitLinearSystem& S = *sys;
 	{
 		const SerialOpenMP serial;
 		S.chol.factorize(S.K);
@@ -328,58 +395,92 @@ void ImplicitLogTimeSolver::factorIfChanged(bool freshFactor)
 	++factorizations;
 	if (S.chol.info() != Eigen::Success)
 		fail("the tangent stiffness (" + std::to_string(S.nEq) + " equations) is not positive definite; CHOLMOD could not factor it");
-	factoredValues.assign(v, v + nnz);
-	S.haveFactor = true;
+	factoredValues.assign(S.K.valuePtr(), S.K.valuePtr() + S.K.nonZeros());
+	factoredStiffness = S.stiffness;
+	S.haveFactor      = true;
+	S.z.clear();
+	lowRankKeys.clear(), lowRankEquations.clear(), lowRankColumns.clear();
+	lowRankFactorization = factorizations;
 }
 
 Eigen::VectorXd ImplicitLogTimeSolver::solveWithCoupling(const Eigen::VectorXd& r)
 {
+	// J = K_f + U V^T is solved with K_f's Cholesky factor and the Sherman-Morrison-Woodbury formula.
+	// Its columns: the state changes since the factor was made (at most lowRankChanges contacts, a
+	// solve each instead of a factorization) and the sliding contacts' shear-normal coupling, which
+	// makes the tangent unsymmetric (without it Newton converges only linearly, at rates up to 0.98
+	// an iteration, measured on 20 mm ISR cracking); the coupling is left out above maxSlidingExact
+	// sliding contacts.
 	ImplicitLinearSystem& S  = *sys;
 	Eigen::VectorXd       du = S.chol.solve(r);
-	const auto&           sliding = S.sliding;
-	if (sliding.empty() || long(sliding.size()) > maxSlidingExact) return du;
-	// The sliding contacts' shear-normal coupling makes the tangent unsymmetric: J = K + U V^T, one
-	// column pair per sliding contact (u = slide bs, v = bn). K keeps its Cholesky factor and J is
-	// solved exactly with the Sherman-Morrison-Woodbury formula; without the coupling Newton
-	// converges only linearly, at rates up to 0.98 an iteration (measured on 20 mm ISR cracking).
-	// Z = K^-1 U costs one solve per column. While the factor is the same and the same contacts
-	// slide, the Z made for them is kept: the coupling then enters as it was when Z was made, as
-	// the tangent does under a kept factor (measured: half the Woodbury solves of a 100 mm damage
-	// run are such repeats). The columns are saved, so that a reloaded scene rebuilds the same Z.
-	const long       m = long(sliding.size());
-	std::vector<int> equations(6 * m);
-	for (long j = 0; j < m; ++j)
-		std::copy(sliding[j].eq, sliding[j].eq + 6, &equations[6 * j]);
-	const bool keep = equations == couplingEquations && couplingFactorization == factorizations && couplingColumns.size() == size_t(6 * m);
-	if (!keep) {
-		couplingEquations.swap(equations);
-		couplingColumns.resize(6 * m);
-		for (long j = 0; j < m; ++j)
-			std::copy(sliding[j].u, sliding[j].u + 6, &couplingColumns[6 * j]);
-		couplingFactorization = factorizations;
+	long                  nSliding = 0;
+	for (const auto& col : S.columns)
+		nSliding += col.type == 2;
+	std::vector<const ImplicitLinearSystem::Column*> use;
+	for (const auto& col : S.columns)
+		if (col.type != 2 || nSliding <= maxSlidingExact) use.push_back(&col);
+	if (use.empty()) return du;
+	// z = K_f^-1 u costs a solve. A column's z is kept with the factor, for the same contact, type
+	// and value (the u of its first iteration: the geometry's drift enters as the factor's does),
+	// and saved, so that a reloaded scene rebuilds the same z (one solve each, in the same order).
+	if (lowRankFactorization != factorizations) {
+		S.z.clear();
+		lowRankKeys.clear(), lowRankEquations.clear(), lowRankColumns.clear();
+		lowRankFactorization = factorizations;
 	}
-	if (!keep || S.Z.cols() != m || S.Z.rows() != S.nEq) {
-		Eigen::MatrixXd U = Eigen::MatrixXd::Zero(S.nEq, m);
-		for (long j = 0; j < m; ++j)
+	auto solveColumn = [&](size_t j) {
+		Eigen::VectorXd u = Eigen::VectorXd::Zero(S.nEq);
+		for (int k = 0; k < 6; ++k)
+			if (lowRankEquations[6 * j + k] >= 0) u[lowRankEquations[6 * j + k]] += lowRankColumns[7 * j + 1 + k];
+		if (j < S.z.size())
+			S.z[j] = S.chol.solve(u);
+		else
+			S.z.push_back(S.chol.solve(u));
+	};
+	while (S.z.size() < lowRankKeys.size() / 3)
+		solveColumn(S.z.size()); // a reloaded scene
+	std::map<std::tuple<int, int, int, Real>, size_t> kept;
+	for (size_t j = 0; j < S.z.size(); ++j)
+		kept.emplace(std::make_tuple(lowRankKeys[3 * j], lowRankKeys[3 * j + 1], lowRankKeys[3 * j + 2], lowRankColumns[7 * j]), j);
+	std::vector<size_t> index(use.size());
+	for (size_t i = 0; i < use.size(); ++i) {
+		const auto& col = *use[i];
+		const auto  it  = kept.find(std::make_tuple(col.id1, col.id2, col.type, col.value));
+		if (it != kept.end()) {
+			// kept while its u is within refactorTolerance of the one it was solved for, as the factor
+			const size_t j     = index[i] = it->second;
+			Real         drift = 0, size = 0;
 			for (int k = 0; k < 6; ++k)
-				if (couplingEquations[6 * j + k] >= 0) U(couplingEquations[6 * j + k], j) += couplingColumns[6 * j + k];
-		S.Z = S.chol.solve(U);
+				drift = std::max(drift, std::abs(col.u[k] - lowRankColumns[7 * j + 1 + k])), size = std::max(size, std::abs(col.u[k]));
+			if (!(drift > refactorTolerance * size)) continue;
+			std::copy(col.u, col.u + 6, &lowRankColumns[7 * j + 1]);
+			solveColumn(j);
+			continue;
+		}
+		lowRankKeys.insert(lowRankKeys.end(), { col.id1, col.id2, col.type });
+		lowRankEquations.insert(lowRankEquations.end(), col.eq, col.eq + 6);
+		lowRankColumns.push_back(col.value);
+		lowRankColumns.insert(lowRankColumns.end(), col.u, col.u + 6);
+		index[i] = S.z.size();
+		solveColumn(S.z.size());
 	}
-	const Eigen::MatrixXd& Z    = S.Z;
-	auto vDot = [](const ImplicitLinearSystem::SlidingCoupling& sc, const auto& x) {
+	const long m    = long(use.size());
+	auto vDot = [](const ImplicitLinearSystem::Column& col, const Eigen::VectorXd& x) {
 		Real s = 0;
 		for (int k = 0; k < 6; ++k)
-			if (sc.eq[k] >= 0) s += sc.v[k] * x(sc.eq[k]);
+			if (col.eq[k] >= 0) s += col.v[k] * x[col.eq[k]];
 		return s;
 	};
 	Eigen::MatrixXd Sm = Eigen::MatrixXd::Identity(m, m);
 	Eigen::VectorXd vy(m);
 	for (long i = 0; i < m; ++i) {
-		vy[i] = vDot(sliding[i], du);
+		vy[i] = vDot(*use[i], du);
 		for (long j = 0; j < m; ++j)
-			Sm(i, j) += vDot(sliding[i], Z.col(j));
+			Sm(i, j) += vDot(*use[i], S.z[index[j]]);
 	}
-	du -= Z * Sm.partialPivLu().solve(vy);
+	const Eigen::VectorXd y = Sm.partialPivLu().solve(vy);
+	for (long j = 0; j < m; ++j)
+		du -= y[j] * S.z[index[j]];
 	return du;
 }
 
@@ -436,8 +537,12 @@ void ImplicitLogTimeSolver::newtonStep()
 	// Tangent, factor, solve; again (at most 4 times) when the move shows new mechanisms.
 	Eigen::VectorXd du;
 	for (int pass = 0;; ++pass) {
-		assembleTangent(pass == 0);
-		factorIfChanged(iterInStep == 1 && pass == 0);
+		const bool fresh = iterInStep == 1 && pass == 0;
+		assembleTangent(pass == 0, fresh);
+		if (needsFactor(fresh)) {
+			if (S.changed > 0) assembleTangent(false, true);
+			factor();
+		}
 		du = solveWithCoupling(r);
 		if (!du.allFinite()) fail("the linear solve gave a non-finite displacement");
 		if (holdMechanisms(du) == 0 || pass >= 4) break;

@@ -47,6 +47,9 @@ public:
 	X(Real, stallTolerance, 1e-5, swelldem_attr::Setting,                                                                                                \
 	  "Unbalanced-force ratio at which a round that Newton has not brought to `tolerance` within newtonLimit iterations is settled "            \
 	  "(a broken contact on its open / closed kink; 10x below the ADR's default tolerance; 0: never) [-]")                                         \
+	X(long, lowRankChanges, 16, swelldem_attr::Setting,                                                                                              \
+	  "Contacts changing state (open, closed, sticking, sliding) since the factor was made, up to which the changes enter the solve "        \
+	  "exactly as low-rank columns (one solve each, Woodbury) instead of a new factorization; 0: refactor at any change [-]")                     \
 	X(long, maxSlidingExact, 1000, swelldem_attr::Setting,                                                                                              \
 	  "Sliding contacts up to which their shear-normal coupling enters the Newton solve exactly (one extra solve each); above, it is left out [-]") \
 	X(long, stalledRounds, 0, swelldem_attr::Result, "Rounds (a step, or its part between breaks) settled at stallTolerance, not at tolerance [-]") \
@@ -65,11 +68,15 @@ public:
 	  "Discs whose sliding contacts enter the tangent as sticking in the current round (mechanismMove) [-]")                                        \
 	X(std::vector<Real>, factoredValues, std::vector<Real>(), swelldem_attr::Internal,                                                                 \
 	  "Entries of the tangent that the current Cholesky factor was computed from (kept so that a reloaded scene factors the same) [N/m; N, N m with rotations]")       \
-	X(std::vector<int>, couplingEquations, std::vector<int>(), swelldem_attr::Internal,                                                               \
-	  "Equations (6 per sliding contact, -1 where held) of the sliding coupling's columns that the kept K^-1 U was made for [-]")                  \
-	X(std::vector<Real>, couplingColumns, std::vector<Real>(), swelldem_attr::Internal,                                                               \
-	  "Entries (6 per sliding contact) of the sliding coupling's columns U that the kept K^-1 U was made for [N/m; N with rotations]")           \
-	X(long, couplingFactorization, -1, swelldem_attr::Internal, "Factorization count at which the kept K^-1 U was made (-1: none) [-]")            \
+	X(std::vector<Real>, factoredStiffness, std::vector<Real>(), swelldem_attr::Internal,                                                             \
+	  "kn, ks of each contact (in factoredGraph's order) in the tangent the current factor was computed from [N/m]")                            \
+	X(std::vector<int>, lowRankKeys, std::vector<int>(), swelldem_attr::Internal,                                                                     \
+	  "Kept low-rank columns of the current factor: body ids and type (0 normal, 1 shear change, 2 sliding coupling), 3 per column [-]")       \
+	X(std::vector<int>, lowRankEquations, std::vector<int>(), swelldem_attr::Internal,                                                                \
+	  "Kept low-rank columns: equations, 6 per column (-1 where held) [-]")                                                                       \
+	X(std::vector<Real>, lowRankColumns, std::vector<Real>(), swelldem_attr::Internal,                                                                \
+	  "Kept low-rank columns: the stiffness change or slope, then the 6 entries of u, 7 per column [N/m; N with rotations]")                   \
+	X(long, lowRankFactorization, -1, swelldem_attr::Internal, "Factorization count the kept low-rank columns were solved with (-1: none) [-]")      \
 	X(std::vector<int>, factoredGraph, std::vector<int>(), swelldem_attr::Internal,                                                                    \
 	  "Body ids (2 per contact) of the contacts the tangent's sparsity pattern was made for [-]")                                                 \
 	X(bool, relaxing, false, swelldem_attr::Internal, "The step is in a dynamic relaxation phase [-]")                                                  \
@@ -95,8 +102,9 @@ private:
 	void                                  newtonStep();
 	// the parts of a Newton iteration, on sys
 	void                                  numberEquations();                  // equations, pattern and analysis when the graph changed
-	void                                  assembleTangent(bool firstPass);    // K's values; the sliding couplings; activeChanges
-	void                                  factorIfChanged(bool freshFactor);  // a new factor unless K is within refactorTolerance of it
+	void                                  assembleTangent(bool firstPass, bool exact); // K's values, the low-rank columns; activeChanges
+	bool                                  needsFactor(bool freshFactor) const; // K no longer within refactorTolerance and lowRankChanges of the factor
+	void                                  factor();
 	Eigen::Matrix<Real, Eigen::Dynamic, 1> solveWithCoupling(const Eigen::Matrix<Real, Eigen::Dynamic, 1>& r); // K^-1 r, Woodbury for the coupling
 	long                                  holdMechanisms(const Eigen::Matrix<Real, Eigen::Dynamic, 1>& du); // discs newly held (mechanismMove)
 	void                                  moveBodies(Real fraction); // by fraction x lineMove, through the velocities

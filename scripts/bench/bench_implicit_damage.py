@@ -13,6 +13,7 @@ contacts of each kind that were bonded at the start. docs/performance.md section
 docs/contact-law-and-solver.md (break rule) quote its figures.
 """
 import argparse
+import ast
 import json
 import os
 import sys
@@ -41,6 +42,8 @@ def main(argv):
     ap.add_argument("--parameters", choices=["paper-micro", "macro"], default="paper-micro")
     ap.add_argument("--verbose", action="store_true", help="print the solver's progress line per step")
     ap.add_argument("--out", default="", help="also write the result as JSON into this folder (result.json)")
+    ap.add_argument("--set", action="append", default=[], metavar="ATTR=VALUE",
+                    help="a setting of the solver, e.g. lowRankChanges=0 (a Python literal; repeatable)")
     a = ap.parse_args(argv)
     with options.refuse_bad("bench_implicit_damage.py"):
         test = scenario.SwellingTest(scenario=a.scenario, behaviour=a.behaviour, damage=True, size_mm=list(a.size_mm),
@@ -52,6 +55,12 @@ def main(argv):
                         breakOneAtATime=a.break_rule == "one")
         if a.tolerance:
             settings["tolerance"] = a.tolerance
+        for item in a.set:
+            name, _, value = item.partition("=")
+            try:
+                settings[name] = ast.literal_eval(value)
+            except (ValueError, SyntaxError):
+                options.bad("set", item, "ATTR=VALUE with VALUE a Python literal")
         solver = dem.make_solver(a.solver, **settings)
     assembly = meso.generate(seed=test.seed, width_mm=test.size_mm[0], height_mm=test.size_mm[1])
     if test.parameters == "macro":
@@ -76,6 +85,7 @@ def main(argv):
     result = {
         "scenario": a.scenario, "behaviour": a.behaviour, "size_mm": list(a.size_mm), "seed": a.seed, "solver": a.solver,
         "break_rule": a.break_rule, "status": status, "iterations": solver.totalIterations, "wall_s": round(wall, 2),
+        "factorizations": getattr(solver, "factorizations", None), "settings": dict(item.split("=", 1) for item in a.set),
         "strain_x": float(strain["eps_xx"]), "strain_y": float(strain["eps_yy"]), "broken_pct": pct}
     print("RESULT " + json.dumps(result), flush=True)
     if a.out:
