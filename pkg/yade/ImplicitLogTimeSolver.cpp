@@ -20,6 +20,7 @@ struct ImplicitLinearSystem {
 	std::vector<std::pair<int, int>>                   graph;      // the real contacts the pattern was made for
 	std::vector<int>                                   slots;      // per contact, the 21 entries of its 6 x 6 lower triangle (-1: held)
 	std::vector<int>                                   diagSlot;   // per equation
+	std::vector<char>                                  isRotation; // per equation: a rotation z
 	std::vector<char>                                  active;     // per contact: its core::ContactLaw::Mode
 	SpMat                                              K;
 	Eigen::CholmodDecomposition<SpMat, Eigen::Lower>   chol;
@@ -198,8 +199,9 @@ void ImplicitLogTimeSolver::numberEquations()
 	for (int p : pinnedDofs)
 		if (p >= 0 && size_t(p) < S.dofOf.size()) S.dofOf[p] = -1;
 	S.nEq = 0; // renumber without the pins
-	for (int& e : S.dofOf)
-		if (e >= 0) e = S.nEq++;
+	S.isRotation.clear();
+	for (size_t k = 0; k < S.dofOf.size(); ++k)
+		if (S.dofOf[k] >= 0) S.dofOf[k] = S.nEq++, S.isRotation.push_back(k % 3 == 2);
 	S.graph.resize(contacts.size());
 	std::vector<Eigen::Triplet<double, int>> trip;
 	trip.reserve(contacts.size() * 21 + S.nEq);
@@ -325,13 +327,14 @@ void ImplicitLogTimeSolver::assembleTangent(bool firstPass, bool exact)
 	});
 	// A DOF that no contact holds in the current state (a loose disc, a disc whose contacts are all
 	// open) moves under its own load as if one typical contact held it, so that it can close them.
-	kScale = S.contacts.empty() ? 1.0 : kScale / S.contacts.size();
+	kScale            = S.contacts.empty() ? 1.0 : kScale / S.contacts.size();
+	const Real kLoose = kScale > 0 ? kScale : 1.0;
 	std::vector<Real> raw(S.touched.size());
 	for (size_t i = 0; i < S.touched.size(); ++i)
 		raw[i] = v[S.diagSlot[S.touched[i]]];
 	for (int e = 0; e < S.nEq; ++e) {
 		double& d = v[S.diagSlot[e]];
-		d += d > 0 ? regularization * d : (kScale > 0 ? kScale : 1.0);
+		d += d > 0 ? regularization * d : kLoose;
 	}
 	// A disc held by one contact can roll about it: a mode of zero stiffness in this tangent, along
 	// which a torque residual at round-off would move it without bound (measured: with a factor 3e-6
@@ -339,27 +342,17 @@ void ImplicitLogTimeSolver::assembleTangent(bool firstPass, bool exact)
 	// shift bounds that move; rotations converge by this factor an iteration, and YADE's shear,
 	// integrated along their path, ends within about the shift of the exact path's (free lattice:
 	// 4.5e-8 of the opening at 1e-3, 8e-13 without).
-	for (const auto& b : scene->bodies->body)
-		if (b) {
-			const int e = S.dofOf[3 * b->id + 2];
-			if (e >= 0) v[S.diagSlot[e]] *= 1 + rotationRegularization;
-		}
+	for (int e = 0; e < S.nEq; ++e)
+		if (S.isRotation[e]) v[S.diagSlot[e]] *= 1 + rotationRegularization;
 	// The diagonal shifts above act on the whole diagonal, which the changes' columns do not see: a
 	// DOF whose changes leave it held by nothing (its last contact opened) has kScale in the exact
 	// tangent, not the factored stiffness minus the change, and one that a change holds again loses
 	// its kScale. A diagonal column brings J to the exact entry where the two differ by more than
 	// 1 % (without it J is singular, or far too stiff, along that DOF, and Newton stalls).
-	std::vector<char> isRotation;
-	const Real        kLoose = kScale > 0 ? kScale : 1.0;
 	for (size_t i = 0; i < S.touched.size(); ++i) {
-		const int e = S.touched[i];
-		if (isRotation.empty()) {
-			isRotation.assign(S.nEq, 0);
-			for (const auto& b : scene->bodies->body)
-				if (b && S.dofOf[3 * b->id + 2] >= 0) isRotation[S.dofOf[3 * b->id + 2]] = 1;
-		}
+		const int  e     = S.touched[i];
 		const Real d     = raw[i] + S.deltaDiag[e];
-		const Real exact = (d > 1e-9 * std::abs(raw[i]) ? d * (1 + regularization) : d + kLoose) * (isRotation[e] ? 1 + rotationRegularization : 1.0);
+		const Real exact = (d > 1e-9 * std::abs(raw[i]) ? d * (1 + regularization) : d + kLoose) * (S.isRotation[e] ? 1 + rotationRegularization : 1.0);
 		const Real lowRankEntry = v[S.diagSlot[e]] + S.deltaDiag[e];
 		if (!(std::abs(exact - lowRankEntry) > 1e-2 * std::abs(exact))) continue;
 		ImplicitLinearSystem::Column col { -1 - e, -1, 3, exact - lowRankEntry, { e, -1, -1, -1, -1, -1 }, {}, { 1, 0, 0, 0, 0, 0 } };
@@ -400,7 +393,6 @@ void ImplicitLogTimeSolver::factor()
 	S.haveFactor      = true;
 	S.z.clear();
 	lowRankKeys.clear(), lowRankEquations.clear(), lowRankColumns.clear();
-	lowRankFactorization = factorizations;
 }
 
 Eigen::VectorXd ImplicitLogTimeSolver::solveWithCoupling(const Eigen::VectorXd& r)
@@ -422,12 +414,8 @@ Eigen::VectorXd ImplicitLogTimeSolver::solveWithCoupling(const Eigen::VectorXd& 
 	if (use.empty()) return du;
 	// z = K_f^-1 u costs a solve. A column's z is kept with the factor, for the same contact, type
 	// and value (the u of its first iteration: the geometry's drift enters as the factor's does),
-	// and saved, so that a reloaded scene rebuilds the same z (one solve each, in the same order).
-	if (lowRankFactorization != factorizations) {
-		S.z.clear();
-		lowRankKeys.clear(), lowRankEquations.clear(), lowRankColumns.clear();
-		lowRankFactorization = factorizations;
-	}
+	// and saved, so that a reloaded scene rebuilds the same z (one solve each, in the same order);
+	// factor() empties them.
 	auto solveColumn = [&](size_t j) {
 		Eigen::VectorXd u = Eigen::VectorXd::Zero(S.nEq);
 		for (int k = 0; k < 6; ++k)

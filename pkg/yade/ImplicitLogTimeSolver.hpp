@@ -76,7 +76,6 @@ public:
 	  "Kept low-rank columns: equations, 6 per column (-1 where held) [-]")                                                                       \
 	X(std::vector<Real>, lowRankColumns, std::vector<Real>(), swelldem_attr::Internal,                                                                \
 	  "Kept low-rank columns: the stiffness change or slope, then the 6 entries of u, 7 per column [N/m; N with rotations]")                   \
-	X(long, lowRankFactorization, -1, swelldem_attr::Internal, "Factorization count the kept low-rank columns were solved with (-1: none) [-]")      \
 	X(std::vector<int>, factoredGraph, std::vector<int>(), swelldem_attr::Internal,                                                                    \
 	  "Body ids (2 per contact) of the contacts the tangent's sparsity pattern was made for [-]")                                                 \
 	X(bool, relaxing, false, swelldem_attr::Internal, "The step is in a dynamic relaxation phase [-]")                                                  \

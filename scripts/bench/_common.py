@@ -105,6 +105,15 @@ def spread(xs):
     return (min(xs), statistics.median(xs), max(xs)) if xs else (float("nan"),) * 3
 
 
+def fit_power(xs, ys):
+    """Exponent b and prefactor of y = p x^b (least squares in log-log)."""
+    lx, ly = [math.log(x) for x in xs], [math.log(y) for y in ys]
+    mx, my = sum(lx) / len(lx), sum(ly) / len(ly)
+    sxx = sum((x - mx) ** 2 for x in lx)
+    b = sum((x - mx) * (y - my) for x, y in zip(lx, ly)) / sxx if sxx > 0 else float("nan")
+    return b, math.exp(my - b * mx)
+
+
 def write_json(path, data):
     d = os.path.dirname(os.path.abspath(path))
     os.makedirs(d, exist_ok=True)

@@ -25,7 +25,6 @@ size over the smallest (1 = linear in the disc count).
 """
 import argparse
 import dataclasses
-import math
 import os
 import statistics
 import sys
@@ -126,14 +125,6 @@ def worker(a):
 
 
 # ------------------------------------------------------------------------------------------ driver
-def fit_exponent(xs, ys):
-    """b of y = p x^b, least squares in log-log."""
-    lx, ly = [math.log(x) for x in xs], [math.log(y) for y in ys]
-    mx, my = sum(lx) / len(lx), sum(ly) / len(ly)
-    sxx = sum((x - mx) ** 2 for x in lx)
-    return sum((x - mx) * (y - my) for x, y in zip(lx, ly)) / sxx if sxx > 0 else float("nan")
-
-
 def driver(a):
     runs = []
     t_start = time.time()
@@ -175,7 +166,7 @@ def driver(a):
         ts = sorted([t for t in table if t["order"] == o], key=lambda t: t["n_particles"])
         lo, hi = ts[0], ts[-1]
         ratio = {k: hi["ns_per_disc"][k] / lo["ns_per_disc"][k] for k in ("cpu", "InteractionLoop", "AdrLogTimeIntegrator")}
-        b = fit_exponent([t["n_particles"] for t in ts], [t["ns_per_disc"]["cpu"] * t["n_particles"] for t in ts]) \
+        b = C.fit_power([t["n_particles"] for t in ts], [t["ns_per_disc"]["cpu"] * t["n_particles"] for t in ts])[0] \
             if len(ts) > 1 else float("nan")
         summary[o] = {"ratio_per_disc": ratio, "exponent": b}
         lines.append(f"{o}: cost per disc at {hi['n_particles']} discs / at {lo['n_particles']} discs: CPU {ratio['cpu']:.2f} "

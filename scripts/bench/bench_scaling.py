@@ -24,7 +24,6 @@ specimen, --calibration results.json, scaled by the growth of the first steps' i
 """
 import argparse
 import json
-import math
 import os
 import sys
 import time
@@ -106,15 +105,6 @@ def worker(a):
 
 
 # ------------------------------------------------------------------------------------------ driver
-def fit_power(xs, ys):
-    """Exponent b and prefactor of y = p x^b (least squares in log-log)."""
-    lx, ly = [math.log(x) for x in xs], [math.log(y) for y in ys]
-    mx, my = sum(lx) / len(lx), sum(ly) / len(ly)
-    sxx = sum((x - mx) ** 2 for x in lx)
-    b = sum((x - mx) * (y - my) for x, y in zip(lx, ly)) / sxx if sxx > 0 else float("nan")
-    return b, math.exp(my - b * mx)
-
-
 def plot(runs, threads, path):
     import matplotlib
     matplotlib.use("Agg")
@@ -191,9 +181,9 @@ def driver(a):
     fits, extra = {}, []
     if len(rs) >= 2:
         n = [r["n_particles"] for r in rs]
-        fits["time_per_iteration"] = fit_power(n, [r["per_iteration_wall_us"] for r in rs])
-        fits["iterations_per_step"] = fit_power(n, [sum(r["step_iterations"]) / len(r["step_iterations"]) for r in rs if r["step_iterations"]])
-        fits["peak_memory"] = fit_power(n, [r["mem_peak_MB"] for r in rs])
+        fits["time_per_iteration"] = C.fit_power(n, [r["per_iteration_wall_us"] for r in rs])
+        fits["iterations_per_step"] = C.fit_power(n, [sum(r["step_iterations"]) / len(r["step_iterations"]) for r in rs if r["step_iterations"]])
+        fits["peak_memory"] = C.fit_power(n, [r["mem_peak_MB"] for r in rs])
         lines += ["", f"Power fits over the sizes (-j {j0}): time per iteration ~ N^{fits['time_per_iteration'][0]:.2f}, "
                   f"iterations per step (first steps) ~ N^{fits['iterations_per_step'][0]:.2f}, peak memory ~ N^{fits['peak_memory'][0]:.2f}"]
     if a.calibration and os.path.exists(a.calibration) and rs:

@@ -12,15 +12,10 @@ import sys
 import numpy as np
 import pytest
 
-REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-try:
-    import swelldem  # noqa: F401
-except ImportError:
-    sys.path.insert(0, os.path.join(REPO, "py"))
-
-from swelldem import meso  # noqa: E402
-from swelldem.meso import aggregates as aggmod  # noqa: E402
-from swelldem.meso import generator as genmod  # noqa: E402
+from conftest import REPO  # and py/ on the path
+from swelldem import meso
+from swelldem.meso import aggregates as aggmod
+from swelldem.meso import generator as genmod
 
 SMALL = dict(width_mm=30.0, height_mm=25.0)
 

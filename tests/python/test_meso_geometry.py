@@ -4,18 +4,11 @@
 Needs the library built (SWELLDEM_BUILD_DIR or <repo>/build): a missing library is a failure.
 """
 import itertools
-import os
-import sys
 
 import numpy as np
 import pytest
 
-try:
-    import swelldem  # noqa: F401
-except ImportError:
-    sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "py"))
-
-from swelldem.meso import _geom  # noqa: E402
+from swelldem.meso import _geom  # conftest puts py/ on the path
 
 RMAX = 0.48
 RMIN = 0.32

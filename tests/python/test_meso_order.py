@@ -6,20 +6,11 @@ two discs of a contact close in the numbering. Physics-free and deterministic.
 
 Needs the geometry library built (SWELLDEM_BUILD_DIR or <repo>/build).
 """
-import os
-import sys
-
 import numpy as np
 import pytest
 
-REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-try:
-    import swelldem  # noqa: F401
-except ImportError:
-    sys.path.insert(0, os.path.join(REPO, "py"))
-
-from swelldem import meso  # noqa: E402
-from swelldem.meso import generator as genmod  # noqa: E402
+from swelldem import meso  # conftest puts py/ on the path
+from swelldem.meso import generator as genmod
 
 SMALL = dict(width_mm=30.0, height_mm=25.0)
 
