@@ -50,6 +50,12 @@ public:
 	X(long, lowRankChanges, 16, swelldem_attr::Setting,                                                                                              \
 	  "Contacts changing state (open, closed, sticking, sliding) since the factor was made, up to which the changes enter the solve "        \
 	  "exactly as low-rank columns (one solve each, Woodbury) instead of a new factorization; 0: refactor at any change [-]")                     \
+	X(long, fallbackIterations, 5000, swelldem_attr::Setting,                                                                                          \
+	  "Iterations of a round (a step, or its part between breaks) after which, if neither tolerance nor stallTolerance is reached, the rest " \
+	  "of the step goes by dynamic relaxation alone to fallbackTolerance, as the ADR would take it (recorded in fallbackSteps); 0: never [-]")   \
+	X(Real, fallbackTolerance, 1e-4, swelldem_attr::Setting,                                                                                           \
+	  "Unbalanced-force ratio at which a step handed to dynamic relaxation (fallbackIterations) is in equilibrium: the ADR's default "          \
+	  "tolerance, so that such a step has the ADR's accuracy [-]")                                                                                   \
 	X(long, maxSlidingExact, 1000, swelldem_attr::Setting,                                                                                              \
 	  "Sliding contacts up to which their shear-normal coupling enters the Newton solve exactly (one extra solve each); above, it is left out [-]") \
 	X(long, stalledRounds, 0, swelldem_attr::Result, "Rounds (a step, or its part between breaks) settled at stallTolerance, not at tolerance [-]") \
@@ -58,6 +64,16 @@ public:
 	X(long, mechanismHolds, 0, swelldem_attr::Result, "Discs whose sliding contacts were taken as sticking (mechanismMove) so far, once a round [-]") \
 	X(long, factorizations, 0, swelldem_attr::Result, "Numeric Cholesky factorizations so far [-]")                                                    \
 	X(long, analyses, 0, swelldem_attr::Result, "Symbolic analyses (contact graph changes) so far [-]")                                               \
+	X(std::vector<int>, fallbackSteps, std::vector<int>(), swelldem_attr::Result,                                                                     \
+	  "Physical steps (1..nSteps) that Newton did not settle within fallbackIterations and dynamic relaxation finished [-]")                      \
+	X(std::vector<Real>, fallbackRatio, std::vector<Real>(), swelldem_attr::Result,                                                                  \
+	  "Unbalanced-force ratio at which each step of fallbackSteps was handed to dynamic relaxation [-]")                                          \
+	X(std::vector<int>, fallbackChanging, std::vector<int>(), swelldem_attr::Result,                                                                 \
+	  "Contacts changing state (open, closed, sticking, sliding) in the last Newton iteration before each hand-over of fallbackSteps [-]")         \
+	X(std::vector<int>, fallbackRelaxation, std::vector<int>(), swelldem_attr::Result,                                                               \
+	  "Dynamic relaxation iterations from the hand-over to the end of each step of fallbackSteps [-]")                                          \
+	X(std::vector<Real>, fallbackWall, std::vector<Real>(), swelldem_attr::Result,                                                                   \
+	  "Wall time of each step of fallbackSteps, from its start to its end [s]")                                                                     \
 	X(long, activeChanges, 0, swelldem_attr::Result, "Contacts whose state (intact, open, sticking, sliding) changed in the last iteration [-]")              \
 	X(std::vector<int>, pinnedDofs, std::vector<int>(), swelldem_attr::Internal,                                                                       \
 	  "Degrees of freedom held to remove a free specimen's rigid-body modes, as 3 x body id + axis (0 x, 1 y) [-]")                                  \
@@ -79,6 +95,8 @@ public:
 	X(std::vector<int>, factoredGraph, std::vector<int>(), swelldem_attr::Internal,                                                                    \
 	  "Body ids (2 per contact) of the contacts the tangent's sparsity pattern was made for [-]")                                                 \
 	X(bool, relaxing, false, swelldem_attr::Internal, "The step is in a dynamic relaxation phase [-]")                                                  \
+	X(bool, fallback, false, swelldem_attr::Internal, "The current step was handed to dynamic relaxation (fallbackIterations) [-]")                   \
+	X(long, fallbackRelaxStart, 0, swelldem_attr::Internal, "relaxationIterations when the current step was handed over [-]")                     \
 	X(long, newtonSince, 0, swelldem_attr::Internal, "Iteration of the step at which Newton (re)started [-]")                                         \
 	X(int, relaxPhase, 0, swelldem_attr::Internal, "Dynamic relaxation phases in the current round [-]")                                             \
 	X(DynamicRelaxation, relax, DynamicRelaxation(), swelldem_attr::Internal, "State of the dynamic relaxation phases [-]")
@@ -86,7 +104,7 @@ public:
 	               "Quasi-static log-time solver for 2D swelldem scenes with an exact equilibrium at each physical step: Newton "
 	               "iterations on YADE's own residual with a sparse Cholesky factor (CHOLMOD) of the contacts' step stiffness, "
 	               "breaks at equilibrium and an active set for broken contacts. Replaces NewtonIntegrator; put it last in "
-	               "O.engines. Defaults differ from the ADR's: tolerance 1e-10, minIterations 1, maxIterations 5000 (Newton and relaxation), colliderPeriod 1.",
+	               "O.engines. Defaults differ from the ADR's: tolerance 1e-10 (met only after a Newton move of the round), minIterations 1, colliderPeriod 1.",
 	               SWELLDEM_IMPLICIT_ATTRS)
 	ImplicitLogTimeSolver();
 	virtual ~ImplicitLogTimeSolver();
@@ -96,6 +114,7 @@ public:
 
 private:
 	long relaxationAtStepStart = 0, factorizationsAtStepStart = 0; // for the progress line only
+	string fallbackDetail() const;                                 // the fallback's tolerance and hand-over, for the progress lines
 	std::vector<Real> bodyRadius; // per body, the largest radius its real contacts give it (0: none); this iteration's
 	void                                  choosePins();
 	void                                  newtonStep();

@@ -344,6 +344,7 @@ LogTimeSolver::StepOutcome LogTimeSolver::settleStep(const Balance& b, bool conv
 	if (iterInStep >= minIterations && !newBreaks && converged) {
 		if (breakOverloaded() == 0) {
 			stepRoundOff.push_back(b.ratio > tolerance ? 1.0 : 0.0);
+			if (beforeCommit) beforeCommit();
 			commitPhysicalStep();
 			out = StepOutcome::Committed;
 		} else {

@@ -123,6 +123,7 @@ protected:
 		~TrackHeldBodiesAtExit() { self->trackHeldBodies(); }
 	};
 	[[noreturn]] void fail(const string& why) const;
+	double            wallNow() const; // [s] of the run, sessions before an O.load included
 	static void       zeroVelocities(Scene* scene);
 	static const unsigned kNeed2D = State::DOF_Z | State::DOF_RX | State::DOF_RY;
 	std::vector<ContactKind*> kinds;              // the kinds of the scene's contacts, refreshed when contacts come or go
@@ -131,6 +132,9 @@ protected:
 	/// What a solver adds to the progress line about its own iterations (not virtual: the vtable
 	/// must keep the size of the stock engine's, compat/abi_pairs.txt).
 	std::function<std::string()> progressDetail;
+	/// Called when a step is about to be committed (before the progress line and the stepHook), so
+	/// that a solver records its own per-step results where the hook reads them.
+	std::function<void()> beforeCommit;
 
 private:
 	void   initialize();
@@ -145,7 +149,6 @@ private:
 	void   runStepHook();
 	void   recordHistory();
 	void   progressLine() const;
-	double wallNow() const;
 	std::chrono::steady_clock::time_point  sessionStart = std::chrono::steady_clock::now();
 	bool                                   kindsStale   = true; // the list of kinds is not saved: made again after O.load
 	std::unique_ptr<boost::python::object> stepHook_;           // null: no hook (holds a Python reference: released under the GIL)

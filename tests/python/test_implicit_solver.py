@@ -245,6 +245,7 @@ CRACKING = r"""
 import sys
 from swelldem import scenario, meso, dem, paper
 solver_name, tol, size, move = sys.argv[1], float(sys.argv[2]), float(sys.argv[3]), sys.argv[4]
+fallback = int(sys.argv[5]) if len(sys.argv) > 5 else None
 test = scenario.SwellingTest(scenario="isr", behaviour="elastic", damage=True, size_mm=[size, size], seed=1,
                              parameters="paper-micro", steps_per_decade=10)
 kinds = scenario.make_kinds(test)   # built from the scenarios' pieces, to count the solver's own iterations
@@ -253,6 +254,8 @@ if tol:
     settings["tolerance"] = tol
 if move != "-":
     settings["mechanismMove"] = float(move)
+if fallback is not None:
+    settings["fallbackIterations"] = fallback
 solver = dem.make_solver(solver_name, **settings)
 assembly = meso.generate(seed=1, width_mm=size, height_mm=size)
 scenario.set_swelling(test, kinds, test.eps_inf * 2 * float(assembly.r.mean()))
@@ -266,7 +269,9 @@ for (a, b), n in bonded.items():
     share[n][1] += 1
     share[n][0] += i is None or not i.isReal or i.phys.broken
 dump({"iters": solver.totalIterations, "relax": getattr(solver, "relaxationIterations", 0),
-      "holds": getattr(solver, "mechanismHolds", 0), "broken_pct": {n: 100.0 * b / t for n, (b, t) in share.items()}})
+      "holds": getattr(solver, "mechanismHolds", 0), "broken_pct": {n: 100.0 * b / t for n, (b, t) in share.items()},
+      "step_ratio": list(solver.stepUnbalanced), "round_off": list(solver.stepRoundOff),
+      "fallback": {a: list(getattr(solver, a, [])) for a in ("fallbackSteps", "fallbackRatio", "fallbackChanging", "fallbackRelaxation", "fallbackWall")}})
 """
 
 
@@ -284,6 +289,24 @@ def test_cracking_specimen_settles_by_newton_and_breaks_as_the_adr(yade_run):
     for kind, pct in imp["broken_pct"].items():
         assert abs(pct - adr["broken_pct"][kind]) < 3.0, kind
     assert imp["broken_pct"]["ITZ"] > 50, "the specimen must crack for this test to test anything"
+    assert imp["fallback"]["fallbackSteps"] == [], "the default fallbackIterations (5000) is above every round of this run"
+    # The fallback: with fallbackIterations 3, every round Newton has not settled in 3 iterations
+    # goes on by dynamic relaxation to 1e-4 (the ADR's default), and the run cracks as the ADR's.
+    fb = yade_run(CRACKING, "implicit", 0, 20, "-", 3, threads=1)
+    print("measured with fallbackIterations 3", fb)
+    f = fb["fallback"]
+    assert len(f["fallbackSteps"]) > 0 and f["fallbackSteps"] == sorted(set(f["fallbackSteps"]))
+    assert all(len(f[a]) == len(f["fallbackSteps"]) for a in f)
+    assert all(r > 1e-10 for r in f["fallbackRatio"]), "a hand-over happens above the tolerance"
+    # a round already within 1e-4 at the hand-over (at round-off above 1e-10) commits with no relaxation
+    assert all(n >= 0 for n in f["fallbackRelaxation"]) and sum(n > 0 for n in f["fallbackRelaxation"]) >= 3
+    assert all(w >= 0 for w in f["fallbackWall"])
+    for step, ratio, roundoff in zip(range(1, len(fb["step_ratio"]) + 1), fb["step_ratio"], fb["round_off"]):
+        assert ratio <= (1e-4 if step in f["fallbackSteps"] else 1e-10) * (1 + 1e-9) or roundoff, (step, ratio)
+    # Measured 0.85 / 72.18 / 5.82: ITZ 3.01 points from the ADR at 1e-5, whose own tolerance moves
+    # it by 2.26 (1e-6: 72.93); one ITZ contact is 0.75 points. The bound, 4.5 points, is 1.5x that.
+    for kind, pct in fb["broken_pct"].items():
+        assert abs(pct - adr["broken_pct"][kind]) < 4.5, (kind, pct, adr["broken_pct"][kind])
 
 
 def test_discs_in_a_mechanism_slide_by_elastic_moves_instead_of_jumping(yade_run):

@@ -140,6 +140,7 @@ class StepRecorder:
             r["per_kind"][name]["broken"].append(int((broken & bonded)[sel].sum()))
             r["per_kind"][name].setdefault("born_broken", []).append(int((~bonded)[sel].sum()))
         r["adr_iterations"] = solver.totalIterations
+        r["fallback_steps"] = fallback_steps(solver)
         r["unbalanced_history"] = {"every": int(getattr(solver, "historyEvery", 0)),
                                    "iteration": [int(v) for v in getattr(solver, "historyIteration", [])],
                                    "ratio": list(getattr(solver, "historyUnbalanced", []))}
@@ -174,6 +175,24 @@ class StepRecorder:
         step = len(self.res["times_days"]) - 1
         if step >= 0 and not self.vtk.exported(step):
             self.vtk.export(step, self.res["times_days"][step])
+
+
+def fallback_steps(solver):
+    """The steps the implicit solver handed to dynamic relaxation (ImplicitLogTimeSolver
+    .fallbackIterations), one dict each: step (1..n), t_days [day], why, ratio_at_handover [-],
+    changing_contacts [-] (state changes in the last Newton iteration), relaxation_iterations [-]
+    and wall_s [s] (the whole step); [] for a solver without a fallback (the ADR)."""
+    steps = list(getattr(solver, "fallbackSteps", []))
+    out = []
+    for i, step in enumerate(steps):
+        ratio, changing = solver.fallbackRatio[i], int(solver.fallbackChanging[i])
+        out.append({"step": int(step), "t_days": float(solver.times[step]),
+                    "why": (f"Newton had not reached the tolerance {solver.tolerance:g} after {solver.fallbackIterations} iterations "
+                            f"of a round (ratio {ratio:.2e}, {changing} contacts changing state); dynamic relaxation finished the "
+                            f"step at {max(solver.tolerance, solver.fallbackTolerance):g}"),
+                    "ratio_at_handover": float(ratio), "changing_contacts": changing,
+                    "relaxation_iterations": int(solver.fallbackRelaxation[i]), "wall_s": float(solver.fallbackWall[i])})
+    return out
 
 
 def export_vtk(out, step, time_days, bonded=None):

@@ -1,0 +1,170 @@
+#!/usr/bin/python3
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""Both solvers at the extremes (docs/performance.md section 5): each case of the table below on a
+12 x 12 mm specimen with damage, three seeds, `--solver adr` and `--solver implicit`, each through
+scripts/swelling_test.py in its own process. For each case it tells whether every run finished,
+the implicit runs' final strains and broken shares against the ADR's (same seed; the allowance is
+the ADR's seed-to-seed range, or its tolerance error where that is larger), and the steps the
+implicit solver handed to dynamic relaxation (fallback) with the time each took.
+
+  /usr/bin/python3 scripts/bench/bench_extremes.py --out out/bench/extremes [--seeds 1 3 5] [--jobs 1]
+
+Runs already finished in --out are kept (delete a run's folder to remeasure). Writes
+extremes.json, extremes.csv and extremes.md in --out."""
+import argparse
+import csv
+import json
+import os
+import subprocess
+import sys
+import time
+from concurrent.futures import ThreadPoolExecutor
+
+BENCH_DIR = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.dirname(os.path.dirname(BENCH_DIR))
+sys.path.insert(0, os.path.join(REPO, "py"))
+from swelldem.paper import AGGREGATE_YOUNG, KIND_NAMES  # noqa: E402
+
+LAUNCHER = os.path.join(REPO, "scripts", "yade-swelldem")
+SCRIPT = os.path.join(REPO, "scripts", "swelling_test.py")
+SIZE = ("--size-mm", "12", "12")
+
+# name -> (what, arguments); damage is on in every case (the scenarios' default)
+CASES = {
+    "reference": ("ISR viscoelastic, 3 steps a decade", ("--steps-per-decade", "3")),
+    "strength 1e-12": ("every tensile strength x 1e-12, viscoelastic", ("--steps-per-decade", "3", "--strength-scale", "1e-12")),
+    "strength 1e-9 N10": ("strengths x 1e-9, 10 steps a decade", ("--steps-per-decade", "10", "--strength-scale", "1e-9")),
+    "asr-coarse gel 1": ("ASR-coarse, every aggregate contact a gel pocket, strengths x 1e-9, N 10",
+                         ("--scenario", "asr-coarse", "--gel-fraction", "1", "--steps-per-decade", "10", "--strength-scale", "1e-9")),
+    "aggregate x1e3": ("aggregate contacts 1000 x stiffer, elastic",
+                       ("--behaviour", "elastic", "--steps-per-decade", "3", "--aggregate-young", f"{AGGREGATE_YOUNG * 1e3:g}")),
+    "aggregate x1e6": ("aggregate contacts 1e6 x stiffer, elastic",
+                       ("--behaviour", "elastic", "--steps-per-decade", "3", "--aggregate-young", f"{AGGREGATE_YOUNG * 1e6:g}")),
+    "tolerance 0.9": ("--tolerance 0.9, viscoelastic", ("--steps-per-decade", "3", "--tolerance", "0.9")),
+    "N 2": ("2 steps a decade", ("--steps-per-decade", "2")),
+    "N 20": ("20 steps a decade", ("--steps-per-decade", "20")),
+}
+SOLVERS = ("adr", "implicit")
+ADR_TOLERANCE_ERROR = 0.021  # strains and forces at the ADR's default 1e-4 (docs/performance.md section 1: 0.9-2.1 %)
+
+
+def run_one(out, case, solver, seed, timeout):
+    folder = os.path.join(out, "runs", f"{case.replace(' ', '_')}-{solver}-s{seed}")
+    path = os.path.join(folder, "results.json")
+    if os.path.exists(path):
+        with open(path) as f:
+            res = json.load(f)
+        if res.get("status") == "finished":
+            return folder, res, None
+    args = [LAUNCHER, "-j", "1", "-n", "-x", SCRIPT, *SIZE, "--seed", str(seed), "--solver", solver, *CASES[case][1], "--out", folder]
+    t0 = time.time()
+    try:
+        p = subprocess.run(args, capture_output=True, text=True, timeout=timeout)
+        ended = None if p.returncode == 0 else f"exit {p.returncode}"
+    except subprocess.TimeoutExpired:
+        ended = f"timeout after {timeout} s"
+    res = None
+    if os.path.exists(path):
+        with open(path) as f:
+            res = json.load(f)
+    print(f"bench_extremes: {case} {solver} seed {seed}: {res.get('status', '?')[:60] if res else 'no results'}"
+          f"{' (' + ended + ')' if ended else ''} in {time.time() - t0:.0f} s", flush=True)
+    return folder, res, ended
+
+
+def summary(res):
+    n = res["n_contacts_by_kind"]
+    last = {k: res["per_kind"][k]["broken"][-1] if res["per_kind"][k]["broken"] else None for k in KIND_NAMES}
+    return {"status": res["status"], "eps_x": res["swelling_strain_x"][-1] if res["swelling_strain_x"] else None,
+            "eps_y": res["swelling_strain_y"][-1] if res["swelling_strain_y"] else None,
+            "broken_pct": {k: (100.0 * last[k] / n[k] if n.get(k) and last[k] is not None else None) for k in KIND_NAMES},
+            "iterations": res.get("adr_iterations"), "wall_s": res.get("wall_s"), "steps": len(res["times_days"]),
+            "fallback": res.get("fallback_steps", [])}
+
+
+def compare(adr, imp):
+    """Per seed, implicit minus ADR against the ADR's spread over seeds (max - min), for the strains
+    (relative, at least the ADR's tolerance error) and the broken shares (points)."""
+    seeds = sorted(set(adr) & set(imp))
+    if not seeds:
+        return None
+    worst = {}
+
+    def spread(vals):
+        vals = [v for v in vals if v is not None]
+        return max(vals) - min(vals) if vals else 0.0
+
+    for key in ("eps_x", "eps_y"):
+        vals = [adr[s][key] for s in seeds]
+        allow = max(spread(vals), ADR_TOLERANCE_ERROR * max(abs(v) for v in vals))
+        dev = max(abs(imp[s][key] - adr[s][key]) for s in seeds)
+        worst[key] = (dev, allow)
+    for k in KIND_NAMES:
+        vals = [adr[s]["broken_pct"][k] for s in seeds]
+        if any(v is None for v in vals):
+            continue
+        dev = max(abs(imp[s]["broken_pct"][k] - adr[s]["broken_pct"][k]) for s in seeds)
+        worst[f"broken_{k}"] = (dev, spread(vals))
+    return worst
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--out", required=True, help="output folder")
+    ap.add_argument("--seeds", type=int, nargs="+", default=[1, 3, 5], help="12 mm specimens of seeds 2 and 4 do not hold their aggregates")
+    ap.add_argument("--cases", nargs="+", default=list(CASES), choices=list(CASES), metavar="CASE", help=", ".join(CASES))
+    ap.add_argument("--jobs", type=int, default=1, help="runs at a time")
+    ap.add_argument("--timeout", type=float, default=3600, help="per run [s]")
+    a = ap.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    work = [(c, s, seed) for c in a.cases for s in SOLVERS for seed in a.seeds]
+    with ThreadPoolExecutor(a.jobs) as pool:
+        done = list(pool.map(lambda w: run_one(a.out, *w, a.timeout), work))
+    table = {}
+    for (case, solver, seed), (folder, res, ended) in zip(work, done):
+        entry = summary(res) if res else {"status": "no results.json"}
+        if ended and entry.get("status") == "running":
+            entry["status"] = ended
+        table.setdefault(case, {}).setdefault(solver, {})[seed] = entry
+    rows = []
+    for case in a.cases:
+        per = table[case]
+        fin = {s: {seed: e for seed, e in per[s].items() if e["status"] == "finished"} for s in SOLVERS}
+        cmp = compare(fin["adr"], fin["implicit"])
+        fb = [f for e in fin["implicit"].values() for f in e["fallback"]]
+        row = {"case": case, "what": CASES[case][0]}
+        for s in SOLVERS:
+            row[f"{s}_finished"] = f"{len(fin[s])}/{len(per[s])}"
+            row[f"{s}_ended"] = "; ".join(sorted({e["status"][:80] for e in per[s].values() if e["status"] != "finished"}))
+            row[f"{s}_wall_s"] = sum(e["wall_s"] for e in fin[s].values())
+            row[f"{s}_iterations"] = sum(e["iterations"] for e in fin[s].values())
+        row["fallback_steps"] = len(fb)
+        row["fallback_wall_s"] = " ".join(f"{f['wall_s']:.1f}" for f in fb)
+        if cmp:
+            row["within"] = all(d <= allow * (1 + 1e-9) for d, allow in cmp.values())
+            row["deviation"] = "; ".join(f"{k} {d:.3g}/{allow:.3g}" for k, (d, allow) in cmp.items())
+        else:
+            row["within"], row["deviation"] = None, "no seed finished with both solvers"
+        rows.append(row)
+    with open(os.path.join(a.out, "extremes.json"), "w") as f:
+        json.dump({"runs": table, "rows": rows}, f, indent=1)
+    with open(os.path.join(a.out, "extremes.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    lines = ["| case | ADR finished | implicit finished | ADR s (iterations) | implicit s (iterations) | fallback steps (s each) | "
+             "implicit within the ADR's spread | worst deviation / allowance (strain relative, shares in points) |",
+             "|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        ended = {s: f" ({r[f'{s}_ended']})" if r[f"{s}_ended"] else "" for s in SOLVERS}
+        lines.append(f"| {r['case']}: {r['what']} | {r['adr_finished']}{ended['adr']} | {r['implicit_finished']}{ended['implicit']} | "
+                     f"{r['adr_wall_s']:.0f} ({r['adr_iterations']:,}) | {r['implicit_wall_s']:.0f} ({r['implicit_iterations']:,}) | "
+                     f"{r['fallback_steps']}{' (' + r['fallback_wall_s'] + ')' if r['fallback_steps'] else ''} | "
+                     f"{'yes' if r['within'] else ('no' if r['within'] is False else '-')} | {r['deviation']} |")
+    with open(os.path.join(a.out, "extremes.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+
+if __name__ == "__main__":
+    main()
