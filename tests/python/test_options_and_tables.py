@@ -225,3 +225,43 @@ def test_paper_tables_marks_runs_that_did_not_finish(tmp_path):
     # broken of the bonded contacts (3 of 100 MORTAR), the one new contact per kind apart
     assert any(r.startswith("| ISR | aging viscoelastic | MORTAR |") and "| 3.0 |" in r for r in lines)
     assert any(r.startswith("| isr-ve-dmg |") and "| 3 | finished |" in r for r in lines)
+
+
+def paper_tables(folder):
+    return subprocess.run([sys.executable, os.path.join(REPO, "scripts", "paper_tables.py"), str(folder)],
+                          capture_output=True, text=True, timeout=120)
+
+
+def test_paper_tables_reads_the_run_from_its_results_not_its_folder_name(tmp_path):
+    """A run with damage, viscoelastic, in a folder named as an elastic run without damage: tabulated
+    as what its results.json says (Table 3.6's viscoelastic rows), its folder shown beside it."""
+    write(tmp_path / "isr-el-nodmg", results(behaviour="viscoelastic", damage=True))
+    p = paper_tables(tmp_path)
+    assert p.returncode == 0, p.stderr
+    nodmg, dmg = p.stdout.split("### Normal contact forces with damage")
+    assert "| ISR | elastic | (not run) |" in nodmg and "| ISR | aging viscoelastic | (not run) |" in nodmg
+    assert sum(r.startswith("| ISR | aging viscoelastic | ") and "(not run)" not in r for r in dmg.splitlines()) == 3
+    assert "| ISR | elastic | (not run) |" in dmg
+    assert any(r.startswith("| isr-ve-dmg (folder isr-el-nodmg) |") for r in dmg.splitlines())
+    assert not any(r.startswith("| isr-el-nodmg |") for r in p.stdout.splitlines())
+
+
+def test_paper_tables_refuses_two_runs_of_the_same_case_naming_both(tmp_path):
+    write(tmp_path / "a", results(behaviour="elastic", damage=False))
+    write(tmp_path / "isr-el-nodmg", results(behaviour="elastic", damage=False))
+    write(tmp_path / "isr-ve-dmg", results())
+    p = paper_tables(tmp_path)
+    assert p.returncode == 1 and p.stdout == "" and "Traceback" not in p.stderr
+    assert p.stderr == (f"paper_tables.py: {tmp_path / 'a' / 'results.json'} and {tmp_path / 'isr-el-nodmg' / 'results.json'} are both "
+                        "runs of isr-el-nodmg (isr, elastic, damage off); allowed: one run of each scenario, behaviour and damage in a folder\n")
+
+
+@pytest.mark.parametrize("content", ["nothing", "empty run folders"])
+def test_paper_tables_refuses_a_folder_without_runs(tmp_path, content):
+    if content == "empty run folders":  # e.g. runs refused before any work, or a study stopped before its first step
+        (tmp_path / "isr-el-nodmg").mkdir()
+        (tmp_path / "notes.md").write_text("x")
+    p = paper_tables(tmp_path)
+    assert p.returncode == 1 and p.stdout == "" and "Traceback" not in p.stderr
+    assert p.stderr == (f"paper_tables.py: folder = {str(tmp_path)!r} holds no run (no <run>/results.json); allowed: a folder of "
+                        "swelling-test runs, one per subfolder <run>/results.json (scripts/paper_study.py --out)\n")
