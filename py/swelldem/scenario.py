@@ -153,8 +153,7 @@ class SwellingTest:
         from .meso import MesoParameters
         overrides = {} if self.aggregate_area_fraction < 0 else {"aggregate_area_fraction": self.aggregate_area_fraction}
         MesoParameters().replace(width_mm=self.size_mm[0], height_mm=self.size_mm[1], **overrides).validate()
-        if not (isinstance(self.out, str) and self.out):
-            _bad("out", self.out, "a folder name")
+        options.output_folder("out", self.out)  # a folder the run can write into (made by run()), nothing made here
         if not isinstance(self.kind_params, dict):
             _bad("kind_params", self.kind_params, "a dict {kind name: {ContactKind attribute: value}}")
         for name, attrs in self.kind_params.items():
