@@ -81,7 +81,7 @@ t0 = time.time()
 if not args.skip_swelling:
     saver = residual.AgeSaver(ages, test.out)
     os.makedirs(test.out, exist_ok=True)
-    swell = scenario.run(test, extra_times=ages, after_step=saver)
+    swell = scenario.run_or_exit(test, "residual_properties.py", extra_times=ages, after_step=saver)
 else:
     with open(os.path.join(test.out, "results.json")) as f:
         swell = json.load(f)

@@ -34,6 +34,7 @@ import math
 import os
 import re
 import signal
+import sys
 import time
 from dataclasses import MISSING, asdict, dataclass, field, fields
 
@@ -448,6 +449,20 @@ class Interrupted(Exception):
     """A stop signal (SIGTERM, Ctrl-C) reached a running swelling test; its results.json says so."""
 
 
+class RunFailed(RuntimeError):
+    """A swelling test that stopped before its end: the solver found no equilibrium, diverged, or
+    met a value it refuses. Its results.json says 'failed: <message>' (`status`) and keeps the
+    steps done; str() is the solver's message."""
+
+    def __init__(self, message, out):
+        super().__init__(message)
+        self.out = out
+
+    @property
+    def status(self):
+        return f"failed: {self}"
+
+
 def _catch_stop_signals():
     """SIGTERM and SIGINT stop the run between two chunks of iterations with Interrupted, so that
     results.json records 'interrupted: <signal>' (a SIGKILL cannot be caught: the run is then
@@ -485,6 +500,23 @@ def prepare(test, extra_times=()):
     return kinds, dem.make_solver(test.solver, **settings)
 
 
+def run_or_exit(test, prog, prepared=None, **kw):
+    """run(test, prepared, **kw) for a script `prog`: the results dict of a run that finished; a
+    run that stops ends the program with one line on stderr and exit status 1, no traceback:
+    '<prog>: failed: <the solver's message> (<out>/results.json)' for a failed run (results.json
+    holds that status and the steps done), '<prog>: interrupted by <signal> ...' for a stop
+    signal, '<prog>: <message>' for a ValueError raised before the run (e.g. aggregates that do
+    not fit the specimen: the generator's draw, which the checks cannot foresee)."""
+    try:
+        return run(test, prepared, **kw)
+    except RunFailed as e:
+        sys.exit(f"{prog}: {e.status} ({os.path.join(e.out, 'results.json')})")
+    except Interrupted as e:  # results.json says "interrupted: <signal>"; the steps done are kept
+        sys.exit(f"{prog}: interrupted by {e}; results so far in {os.path.join(test.out, 'results.json')}")
+    except ValueError as e:
+        sys.exit(f"{prog}: {e}")
+
+
 def run_all(tests, prog, keep_failed=False):
     """Runs every SwellingTest of the dict `tests` in this process, one after the other, for a
     study script `prog`; a test whose out folder already holds a finished run (or, with
@@ -504,8 +536,8 @@ def run_all(tests, prog, keep_failed=False):
         print(f"{prog}: {key}", flush=True)
         try:
             results[key] = run(test)
-        except Exception as e:  # noqa: BLE001 - a run that fails is reported, the others go on
-            print(f"{prog}: {key} failed: {e}", flush=True)
+        except RunFailed as e:  # reported; its results.json (the steps done) is read back and the others go on
+            print(f"{prog}: {key} {e.status}", flush=True)
             with open(path) as f:
                 results[key] = json.load(f)
     return results
@@ -603,6 +635,8 @@ def run(test, prepared=None, extra_times=(), after_step=None):
     except Exception as e:  # noqa: BLE001 - the message goes into the results, then up
         res["status"] = f"failed: {e}"
         report.write_results(test.out, res)
+        if isinstance(e, (RuntimeError, ValueError)):  # the solver's stop (or a value it refused): a result, not a bug
+            raise RunFailed(str(e), test.out) from e
         raise
     finally:
         res["wall_s"] = time.time() - t0
