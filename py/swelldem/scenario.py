@@ -148,6 +148,7 @@ class SwellingTest:
         options.integer("rebar_bars", self.rebar_bars, lo=1)
         options.number("rebar_young", self.rebar_young, lo=0, unit="Pa")
         options.number("rebar_yield_stress", self.rebar_yield_stress, lo=0, unit="Pa")
+        self.rebar_layout()  # a layout that does not fit the specimen, from the options alone
         self.temperature_history()  # the temperature options, the CSV file read and checked
         # the mesostructure generator's own checks (a specimen too small for the sieve fractions, an
         # aggregate fraction it cannot place, ...), run here so that they too come before any work
@@ -186,6 +187,15 @@ class SwellingTest:
             return None
         days, celsius = read_temperature_csv(self.temperature_csv)
         return days, [c + KELVIN for c in celsius]
+
+    def rebar_layout(self):
+        """The bars' swelldem.dem.rebar.RebarLayout (None without bars), from the options alone (size,
+        ratio, bar count, steel); OptionError for a layout that does not fit the specimen."""
+        if not self.rebar_ratio > 0:
+            return None
+        from .dem import rebar  # plain Python: the layout needs no YADE
+        return rebar.layout(self.size_mm[0] * 1e-3, self.size_mm[1] * 1e-3, self.rebar_ratio, n_bars=self.rebar_bars,
+                            young=self.rebar_young, yield_stress=self.rebar_yield_stress)
 
     @property
     def t_end(self):
@@ -575,11 +585,9 @@ def run(test, prepared=None, extra_times=(), after_step=None):
     overrides = {} if test.aggregate_area_fraction < 0 else {"aggregate_area_fraction": test.aggregate_area_fraction}
     print(f"swelldem: set-up: mesostructure {test.size_mm[0]:g} x {test.size_mm[1]:g} mm, seed {test.seed}", flush=True)
     assembly = meso.generate(seed=test.seed, width_mm=test.size_mm[0], height_mm=test.size_mm[1], **overrides)
-    lay = None
-    if test.rebar_ratio > 0:
+    lay = test.rebar_layout()  # checked by validate(), before any work
+    if lay is not None:
         from .dem import rebar
-        lay = rebar.layout(assembly, test.rebar_ratio, n_bars=test.rebar_bars, young=test.rebar_young,
-                           yield_stress=test.rebar_yield_stress)
         assembly = rebar.carve(assembly, lay)  # the discs the bar replaces
     assembly.save(os.path.join(test.out, "assembly.npz"))
     if test.parameters == "macro":
