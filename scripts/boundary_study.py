@@ -77,6 +77,7 @@ def main(argv):
 
 
 def check(a):
+    options.output_folder("out", a.out)
     options.numbers("size_mm", a.size_mm, count=2, lo=0, unit="mm", allowed="two finite lengths > 0 [mm]")
     options.integer("seed", a.seed, lo=0)
     options.number("steps_per_decade", a.steps_per_decade, lo=0)

@@ -18,7 +18,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "py"))
-from swelldem import report  # noqa: E402
+from swelldem import options, report  # noqa: E402
 
 
 def load(d):
@@ -34,6 +34,8 @@ def main(argv):
     ap.add_argument("runs", nargs="+", help="run folders to compare with it")
     ap.add_argument("--out", default="out/compare")
     a = ap.parse_args(argv)
+    with options.refuse_bad("compare_runs.py"):
+        options.output_folder("out", a.out)
     ref = load(a.reference)
     others = [load(d) for d in a.runs]
     bad = [o["scenario"] for o in others if o["scenario"] != ref["scenario"]]

@@ -23,7 +23,7 @@ except ImportError:
         if _cand and os.path.basename(_cand) == "make_mesostructure.py":
             sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(_cand))), "py"))
             break
-from swelldem import meso  # noqa: E402
+from swelldem import meso, options  # noqa: E402
 
 
 def _fractions(text):
@@ -67,6 +67,11 @@ def parse_args(argv):
 def main(argv=None):
     t0 = time.perf_counter()
     args = parse_args(sys.argv[1:] if argv is None else argv)
+    try:
+        options.output_folder("out", args.out)
+    except options.OptionError as e:
+        print(f"make_mesostructure.py: {e}", file=sys.stderr)
+        return 2
     try:
         params = meso.MesoParameters(
             width_mm=args.size_mm[0], height_mm=args.size_mm[1], rmax_mm=args.rmax_mm,

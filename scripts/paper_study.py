@@ -60,13 +60,12 @@ def settings_of(a):
 def check(a):
     """Every option, in the one message form (swelldem.options), before any work; the settings of
     finished runs already in DIR must be this study's."""
+    options.output_folder("out", a.out)
     options.integer("jobs", a.jobs, lo=1)
     options.number("steps_per_decade", a.steps_per_decade, lo=0, hi=STEPS_PER_DECADE_MAX, hi_incl=True,
                    allowed=f"0 < steps_per_decade <= {STEPS_PER_DECADE_MAX} [1/decade]")
     # the swelling test's own checks (size, seed, the mesostructure generator's limits)
     SwellingTest(size_mm=tuple(a.size_mm), seed=a.seed, steps_per_decade=a.steps_per_decade, solver=a.solver, out=a.out).validate()
-    if os.path.exists(a.out) and not os.path.isdir(a.out):
-        options.bad("out", a.out, "a folder (new, or one of an earlier call with the same settings)")
     want = settings_of(a)
     for name in run_names():
         got = finished_settings(os.path.join(a.out, name))

@@ -38,6 +38,7 @@ def label(rho):
 def main(argv):
     with options.refuse_bad("rebar_study.py"):
         a = parse(argv)
+        options.output_folder("out", a.out)
         options.numbers("size_mm", a.size_mm, count=2, lo=0, unit="mm", allowed="two finite lengths > 0 [mm]")
         tests = {(sc, rho): scenario.SwellingTest(scenario=sc, behaviour=a.behaviour, size_mm=tuple(a.size_mm), seed=a.seed,
                                                   steps_per_decade=a.steps_per_decade, rebar_ratio=rho, solver=a.solver,

@@ -21,7 +21,7 @@ import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "py"))
 
-from swelldem import residual, scenario  # noqa: E402
+from swelldem import options, residual, scenario  # noqa: E402
 
 ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter)
 scenario.add_arguments(ap)
@@ -48,13 +48,15 @@ if "compression" not in args.tests and "sdt" in args.tests:
 
 
 def fail(msg):
-    print(msg, file=sys.stderr)
+    print(f"residual_properties.py: {msg}", file=sys.stderr)
     sys.exit(2)
 
 
 try:
     test = scenario.from_arguments(args)
     test.validate()
+    if args.reference_cache:
+        options.output_folder("reference_cache", args.reference_cache)
     residual.check_request(args.test_ages, test.t_start_days, test.t_end, args.tests, args.sdt_fraction, args.sdt_cycles)
     for name, v in (("--strain-step-tension", args.strain_step_tension), ("--strain-step-compression", args.strain_step_compression)):
         if not (0 < v < 1e-3):
@@ -79,7 +81,7 @@ t0 = time.time()
 if not args.skip_swelling:
     saver = residual.AgeSaver(ages, test.out)
     os.makedirs(test.out, exist_ok=True)
-    swell = scenario.run(test, extra_times=ages, after_step=saver)
+    swell = scenario.run_or_exit(test, "residual_properties.py", extra_times=ages, after_step=saver)
 else:
     with open(os.path.join(test.out, "results.json")) as f:
         swell = json.load(f)

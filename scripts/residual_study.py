@@ -23,7 +23,7 @@ import numpy as np
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, "py"))
-from swelldem import scenario  # noqa: E402
+from swelldem import options, scenario  # noqa: E402
 #: Test ages [day]: Larive's xi about 0.32 and 0.65 (tau_L, tau_c of paper.KINETICS), and the end.
 AGES = {"isr": (80, 130, 3650), "asr-fine": (4000, 7000, 50000), "asr-coarse": (4000, 7000, 50000)}
 SCENARIOS = ("isr", "asr-fine", "asr-coarse")
@@ -43,6 +43,8 @@ ap.add_argument("--test-options", nargs=argparse.REMAINDER, default=[],
                 help="the rest of the line goes to residual_properties.py (e.g. --strain-step-tension 6e-6)")
 ap.add_argument("--plots-only", action="store_true", help="only gather the runs made and plot")
 args = ap.parse_args()
+with options.refuse_bad("residual_study.py"):  # exit status 2, as argparse's, before any work
+    options.output_folder("out", args.out)
 
 
 def run_name(sc, beh, seed):

@@ -31,12 +31,8 @@ with options.refuse_bad("swelling_test.py"):  # exit status 2, as argparse's, be
     # under yade-batch (YADE_BATCH set) the job's table line overrides the command line's values
     test = scenario.from_batch_table(scenario.from_arguments(ap.parse_args(sys.argv[1:])))
     prepared = scenario.prepare(test)
-try:
-    res = scenario.run(test, prepared)
-except ValueError as e:  # raised during the run: results.json says "failed: ..."
-    sys.exit(f"swelling_test.py: {e}")
-except scenario.Interrupted as e:  # results.json says "interrupted: <signal>"; the steps done are kept
-    sys.exit(f"swelling_test.py: interrupted by {e}; results so far in {test.out}/results.json")
+# a run that stops (failed, interrupted) ends with its one-line status on stderr and exit status 1
+res = scenario.run_or_exit(test, "swelling_test.py", prepared)
 print(f"swelling_test: {test.scenario} {test.behaviour} damage {'on' if test.damage else 'off'}, solver {test.solver}: "
       f"{res['n_particles']} particles, strain x {res['swelling_strain_x'][-1] * 1e6:.0f}e-6 y {res['swelling_strain_y'][-1] * 1e6:.0f}e-6, "
       f"iterations {res['adr_iterations']}, wall {res['wall_s']:.1f} s")

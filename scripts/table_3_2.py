@@ -51,8 +51,7 @@ with options.refuse_bad("table_3_2.py"):  # every option, before any work; exit 
     options.number("eps_inf", args.eps_inf, lo=0)
     tau_c, tau_l, t_end = paper.KINETICS[args.case]
     options.number("t_start", args.t_start, lo=0, hi=t_end, unit="day", allowed=f"0 < t_start < {t_end:g} (the end of {args.case}) [day]")
-    if not args.out:
-        options.bad("out", args.out, "a folder name")
+    options.output_folder("out", args.out)
     # The plugin's objects first: their constructors check the rest (tStart < tEnd, ...). The
     # kind's d_inf depends on the assembly and is set once it exists.
     kind = dem.contact_kind("MORTAR", behaviour="elastic", young=args.young, b3="mortar", kinetics=args.case, swelling=True)

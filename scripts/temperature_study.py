@@ -39,6 +39,7 @@ def run_name(T):
 
 
 with options.refuse_bad("temperature_study.py"):
+    options.output_folder("out", args.out)
     if len(set(args.temperatures_c)) != len(args.temperatures_c):
         options.bad("temperatures_c", tuple(args.temperatures_c), "distinct temperatures")
     tests = {T: scenario.SwellingTest(scenario="asr-fine", temperature_c=T, size_mm=tuple(args.size_mm), seed=args.seed, solver=args.solver,

@@ -26,8 +26,7 @@ ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDe
 ap.add_argument("--out", default="out/tutorial", help="output folder")
 args = ap.parse_args(sys.argv[1:])
 with options.refuse_bad("tutorial_own_scene.py"):
-    if not args.out:
-        options.bad("out", args.out, "a folder name")
+    options.output_folder("out", args.out)
 os.makedirs(args.out, exist_ok=True)
 
 # --- 1. Mesostructure (plain geometry, lengths in mm; the assembly is in metres) --------------

@@ -38,8 +38,7 @@ with options.refuse_bad("two_particles.py"):  # every option, then the plugin's 
     options.number("steps_per_decade", args.steps_per_decade, lo=0)
     options.tolerance("tolerance", args.tolerance)
     options.number("t_start", args.t_start, lo=0, hi=t_end, unit="day", allowed=f"0 < t_start < {t_end:g} (the end of {args.case}) [day]")
-    if not args.out:
-        options.bad("out", args.out, "a folder name")
+    options.output_folder("out", args.out)
     kind = dem.contact_kind("MORTAR", behaviour=behaviour, young=30e9, b3="mortar", swell_disp_inf=D_INF, kinetics=args.case)
     solver = dem.make_solver("adr", tStart=args.t_start, tEnd=t_end, stepsPerDecade=args.steps_per_decade, tolerance=args.tolerance,
                              label="solver")

@@ -13,7 +13,10 @@ Plain Python: it runs without YADE.
 import contextlib
 import math
 import numbers as _numbers
+import os
+import stat
 import sys
+import tempfile
 
 #: The loosest ADR tolerance still worth running: docs/performance.md section 1 measures 3-6 % force
 #: error at 1e-3 and 11-15 % at 1e-2 ("useless"); a looser value warns.
@@ -118,6 +121,69 @@ def warn_loose_tolerance(name, value, useful_max=USEFUL_TOLERANCE_MAX):
     """One line on stderr (where a script's user looks; Python's warnings filter could hide it)."""
     sys.stderr.write(f"swelldem: warning: {name} = {value!r} is looser than the useful range (<= {useful_max:g}; "
                      f"docs/performance.md section 1: 1e-3 leaves 3-6 % error on the forces, 1e-2 11-15 %); the run goes on\n")
+
+
+def _folder_problem(folder):
+    """Why `folder` cannot be written into (made if absent), or None when it can: a part of the
+    path is a file, the folder itself is a file, or its nearest existing folder refuses a new
+    entry (read-only, /proc, no permission). Tried with a probe entry made and removed at once,
+    the only test that holds for root and for special file systems alike; nothing is left."""
+    head = os.path.abspath(folder)
+    while True:
+        try:
+            st = os.stat(head)
+            break
+        except (FileNotFoundError, NotADirectoryError):
+            if os.path.islink(head):
+                return f"{head} is a link to nothing"
+            parent = os.path.dirname(head)
+            if parent == head:
+                return f"{head} does not exist"
+            head = parent
+        except OSError as e:
+            return f"{head}: {e.strerror}"
+    if not stat.S_ISDIR(st.st_mode):
+        return f"{head} is a file" if head == os.path.abspath(folder) else f"{head} is a file, not a folder"
+    try:
+        if head == os.path.abspath(folder):
+            fd, probe = tempfile.mkstemp(prefix=".swelldem-probe-", dir=head)
+            os.close(fd)
+            os.remove(probe)
+        else:
+            os.rmdir(tempfile.mkdtemp(prefix=".swelldem-probe-", dir=head))
+    except OSError as e:
+        return f"{head} takes no new {'file' if head == os.path.abspath(folder) else 'folder'}: {e.strerror}"
+    return None
+
+
+def output_folder(name, path):
+    """`path` if a script can write its results into it: an existing folder it may write into, or
+    a new one (made later, by the script) under such a folder; OptionError otherwise, in the one
+    message form, with the reason (e.g. 'swelldem: out = '/proc/x' is out of range; allowed: a
+    folder that exists or can be made, and written into (/proc takes no new folder: No such file
+    or directory)'). Creates nothing: a script calls it with its other checks, before any work."""
+    if not isinstance(path, str) or not path:
+        bad(name, path, "a folder name")
+    why = _folder_problem(path)
+    if why:
+        bad(name, path, f"a folder that exists or can be made, and written into ({why})")
+    return path
+
+
+def output_file(name, path):
+    """`path` if a script can write a file there (a benchmark's JSON): not a folder, and its folder
+    as output_folder() checks it; OptionError otherwise. Creates nothing."""
+    if not isinstance(path, str) or not path:
+        bad(name, path, "a file name")
+    full = os.path.abspath(path)
+    if os.path.isdir(full):
+        bad(name, path, f"a file to write, in a folder that exists or can be made ({full} is a folder)")
+    why = _folder_problem(os.path.dirname(full))
+    if why is None and os.path.exists(full) and not os.access(full, os.W_OK):
+        why = f"{full} cannot be written: permission denied"
+    if why:
+        bad(name, path, f"a file to write, in a folder that exists or can be made ({why})")
+    return path
 
 
 @contextlib.contextmanager

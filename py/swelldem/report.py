@@ -125,6 +125,14 @@ def paper_key(res):
     return key if key in TABLE_FORCES else None
 
 
+def run_key(res):
+    """'<scenario>-<el|ve>-<nodmg|dmg>' of a run of the paper's study, from its results.json's
+    scenario, behaviour and damage (scripts/paper_study.py names its run folders so), or None for
+    a run the paper has no counterpart of."""
+    key = paper_key(res)
+    return None if key is None else "-".join(key)
+
+
 def size_note(res):
     """One sentence: the run's specimen size against the paper's (forces and broken counts depend
     on it: docs/scenarios.md compares 40 and 100 mm)."""
@@ -612,11 +620,12 @@ def compare_md(rows, reference_name, reference):
     return lines
 
 
-def paper_tables_md(runs):
+def paper_tables_md(runs, folders=None):
     """The Markdown lines of our runs next to the paper's Tables 3.4 (no damage) and 3.6 (damage),
     with the variation of each viscoelastic run to the elastic one of the same damage setting
-    (ours and the paper's), then one line per run. runs: {'<scenario>-<el|ve>-<nodmg|dmg>':
-    results dict} (the folder names of scripts/paper_study.py)."""
+    (ours and the paper's), then one line per run. runs: {run_key(results dict): results dict}
+    (the folder names of scripts/paper_study.py); folders: {key: the run's folder name}, shown
+    beside the key in the runs table where the two differ."""
     fmt = lambda v: "-" if v is None or v != v else f"{round(v)}"
     lines, unfinished = [], False
     for damage, table in (("nodmg", "3.4"), ("dmg", "3.6")):
@@ -660,6 +669,8 @@ def paper_tables_md(runs):
               "| run | particles | contacts | size (mm) | final strain x, y (1e-6) | iterations | wall (s) | last step (day) | new contacts | status |",
               "|---|---|---|---|---|---|---|---|---|---|"]
     for name, r in runs.items():
+        folder = (folders or {}).get(name, name)
+        name = name if folder == name else f"{name} (folder {folder})"
         sx, sy = (r["swelling_strain_x"] or [float("nan")])[-1], (r["swelling_strain_y"] or [float("nan")])[-1]
         born = [row["born_broken"] for row in final_rows(r)]
         born = "-" if None in born else str(sum(born))

@@ -34,6 +34,7 @@ import math
 import os
 import re
 import signal
+import sys
 import time
 from dataclasses import MISSING, asdict, dataclass, field, fields
 
@@ -147,14 +148,14 @@ class SwellingTest:
         options.integer("rebar_bars", self.rebar_bars, lo=1)
         options.number("rebar_young", self.rebar_young, lo=0, unit="Pa")
         options.number("rebar_yield_stress", self.rebar_yield_stress, lo=0, unit="Pa")
+        self.rebar_layout()  # a layout that does not fit the specimen, from the options alone
         self.temperature_history()  # the temperature options, the CSV file read and checked
         # the mesostructure generator's own checks (a specimen too small for the sieve fractions, an
         # aggregate fraction it cannot place, ...), run here so that they too come before any work
         from .meso import MesoParameters
         overrides = {} if self.aggregate_area_fraction < 0 else {"aggregate_area_fraction": self.aggregate_area_fraction}
         MesoParameters().replace(width_mm=self.size_mm[0], height_mm=self.size_mm[1], **overrides).validate()
-        if not (isinstance(self.out, str) and self.out):
-            _bad("out", self.out, "a folder name")
+        options.output_folder("out", self.out)  # a folder the run can write into (made by run()), nothing made here
         if not isinstance(self.kind_params, dict):
             _bad("kind_params", self.kind_params, "a dict {kind name: {ContactKind attribute: value}}")
         for name, attrs in self.kind_params.items():
@@ -186,6 +187,15 @@ class SwellingTest:
             return None
         days, celsius = read_temperature_csv(self.temperature_csv)
         return days, [c + KELVIN for c in celsius]
+
+    def rebar_layout(self):
+        """The bars' swelldem.dem.rebar.RebarLayout (None without bars), from the options alone (size,
+        ratio, bar count, steel); OptionError for a layout that does not fit the specimen."""
+        if not self.rebar_ratio > 0:
+            return None
+        from .dem import rebar  # plain Python: the layout needs no YADE
+        return rebar.layout(self.size_mm[0] * 1e-3, self.size_mm[1] * 1e-3, self.rebar_ratio, n_bars=self.rebar_bars,
+                            young=self.rebar_young, yield_stress=self.rebar_yield_stress)
 
     @property
     def t_end(self):
@@ -449,6 +459,20 @@ class Interrupted(Exception):
     """A stop signal (SIGTERM, Ctrl-C) reached a running swelling test; its results.json says so."""
 
 
+class RunFailed(RuntimeError):
+    """A swelling test that stopped before its end: the solver found no equilibrium, diverged, or
+    met a value it refuses. Its results.json says 'failed: <message>' (`status`) and keeps the
+    steps done; str() is the solver's message."""
+
+    def __init__(self, message, out):
+        super().__init__(message)
+        self.out = out
+
+    @property
+    def status(self):
+        return f"failed: {self}"
+
+
 def _catch_stop_signals():
     """SIGTERM and SIGINT stop the run between two chunks of iterations with Interrupted, so that
     results.json records 'interrupted: <signal>' (a SIGKILL cannot be caught: the run is then
@@ -486,6 +510,23 @@ def prepare(test, extra_times=()):
     return kinds, dem.make_solver(test.solver, **settings)
 
 
+def run_or_exit(test, prog, prepared=None, **kw):
+    """run(test, prepared, **kw) for a script `prog`: the results dict of a run that finished; a
+    run that stops ends the program with one line on stderr and exit status 1, no traceback:
+    '<prog>: failed: <the solver's message> (<out>/results.json)' for a failed run (results.json
+    holds that status and the steps done), '<prog>: interrupted by <signal> ...' for a stop
+    signal, '<prog>: <message>' for a ValueError raised before the run (e.g. aggregates that do
+    not fit the specimen: the generator's draw, which the checks cannot foresee)."""
+    try:
+        return run(test, prepared, **kw)
+    except RunFailed as e:
+        sys.exit(f"{prog}: {e.status} ({os.path.join(e.out, 'results.json')})")
+    except Interrupted as e:  # results.json says "interrupted: <signal>"; the steps done are kept
+        sys.exit(f"{prog}: interrupted by {e}; results so far in {os.path.join(test.out, 'results.json')}")
+    except ValueError as e:
+        sys.exit(f"{prog}: {e}")
+
+
 def run_all(tests, prog, keep_failed=False):
     """Runs every SwellingTest of the dict `tests` in this process, one after the other, for a
     study script `prog`; a test whose out folder already holds a finished run (or, with
@@ -505,8 +546,8 @@ def run_all(tests, prog, keep_failed=False):
         print(f"{prog}: {key}", flush=True)
         try:
             results[key] = run(test)
-        except Exception as e:  # noqa: BLE001 - a run that fails is reported, the others go on
-            print(f"{prog}: {key} failed: {e}", flush=True)
+        except RunFailed as e:  # reported; its results.json (the steps done) is read back and the others go on
+            print(f"{prog}: {key} {e.status}", flush=True)
             with open(path) as f:
                 results[key] = json.load(f)
     return results
@@ -544,11 +585,9 @@ def run(test, prepared=None, extra_times=(), after_step=None):
     overrides = {} if test.aggregate_area_fraction < 0 else {"aggregate_area_fraction": test.aggregate_area_fraction}
     print(f"swelldem: set-up: mesostructure {test.size_mm[0]:g} x {test.size_mm[1]:g} mm, seed {test.seed}", flush=True)
     assembly = meso.generate(seed=test.seed, width_mm=test.size_mm[0], height_mm=test.size_mm[1], **overrides)
-    lay = None
-    if test.rebar_ratio > 0:
+    lay = test.rebar_layout()  # checked by validate(), before any work
+    if lay is not None:
         from .dem import rebar
-        lay = rebar.layout(assembly, test.rebar_ratio, n_bars=test.rebar_bars, young=test.rebar_young,
-                           yield_stress=test.rebar_yield_stress)
         assembly = rebar.carve(assembly, lay)  # the discs the bar replaces
     assembly.save(os.path.join(test.out, "assembly.npz"))
     if test.parameters == "macro":
@@ -604,6 +643,8 @@ def run(test, prepared=None, extra_times=(), after_step=None):
     except Exception as e:  # noqa: BLE001 - the message goes into the results, then up
         res["status"] = f"failed: {e}"
         report.write_results(test.out, res)
+        if isinstance(e, (RuntimeError, ValueError)):  # the solver's stop (or a value it refused): a result, not a bug
+            raise RunFailed(str(e), test.out) from e
         raise
     finally:
         res["wall_s"] = time.time() - t0

@@ -395,7 +395,7 @@ ap.add_argument("--run-dir", help="internal (worker)")
 ap.add_argument("--config", help="internal (worker): JSON settings")
 with options.refuse_bad("bench_accuracy.py"):  # every option before any run (NaN, infinity), exit 2
     args = ap.parse_args(sys.argv[1:])
-    args.out = os.path.abspath(args.out)
+    args.out = os.path.abspath(options.output_folder("out", args.out))
     for sc in args.scenarios:
         options.choice("scenarios", sc, tuple(paper.SCENARIOS))
     options.number("size_mm", args.size_mm, lo=0, unit="mm")

@@ -17,6 +17,7 @@ import ast
 import json
 import os
 import sys
+import tempfile
 import time
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -48,7 +49,9 @@ def main(argv):
     with options.refuse_bad("bench_implicit_damage.py"):
         test = scenario.SwellingTest(scenario=a.scenario, behaviour=a.behaviour, damage=True, size_mm=list(a.size_mm),
                                      seed=a.seed, parameters=a.parameters, steps_per_decade=a.steps_per_decade,
-                                     tolerance=a.tolerance, solver=a.solver)
+                                     tolerance=a.tolerance, solver=a.solver,
+                                     # the test's own folder is not written (only --out's result.json)
+                                     out=a.out or tempfile.gettempdir())
         test.validate()
         kinds = scenario.make_kinds(test)
         settings = dict(tStart=test.t_start_days, tEnd=test.t_end, stepsPerDecade=test.steps_per_decade, verbose=a.verbose,

@@ -57,6 +57,7 @@ from swelldem import options  # noqa: E402  (_common put py/ on the path)
 
 with options.refuse_bad("bench_law_cost.py"):  # every option before any work (NaN, infinity), exit 2
     args = ap.parse_args(sys.argv[1:])
+    options.output_file("out", args.out)
     options.integer("n_discs", args.n_discs, lo=2)
     options.integer("seed", args.seed, lo=0)
     options.number("radius_scale", args.radius_scale, lo=1, hi=1.5, lo_incl=True)

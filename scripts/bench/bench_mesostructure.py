@@ -35,6 +35,7 @@ def main(argv=None):
     ap.add_argument("--json", default=os.path.join(paths.REPO_DIR, "out", "bench_mesostructure.json"))
     with options.refuse_bad("bench_mesostructure.py"):  # every option before any work (NaN, infinity), exit 2
         args = ap.parse_args(sys.argv[1:] if argv is None else argv)
+        options.output_file("json", args.json)
         options.integer("repeat", args.repeat, lo=1)
         options.numbers("size_mm", args.size_mm, count=2, lo=0, unit="mm")
         meso.MesoParameters(width_mm=args.size_mm[0], height_mm=args.size_mm[1]).validate()  # the generator's own checks

@@ -34,6 +34,7 @@ THIS = next(os.path.abspath(c) for c in (sys.argv[0], globals().get("__file__"),
             if c and os.path.basename(c) == "bench_order.py")
 sys.path.insert(0, os.path.dirname(THIS))
 import _common as C  # noqa: E402
+from swelldem import options  # noqa: E402  (_common put py/ on the path)
 
 ORDERS = ("packing", "hilbert", "random")
 
@@ -194,5 +195,6 @@ args = ap.parse_args(sys.argv[1:])
 if args.worker:
     worker(args)
 else:
-    args.out = os.path.abspath(args.out)
+    with options.refuse_bad("bench_order.py"):  # exit status 2, as argparse's, before any work
+        args.out = os.path.abspath(options.output_file("out", args.out))
     driver(args)

@@ -237,6 +237,7 @@ from swelldem import options  # noqa: E402  (_common put py/ on the path)
 
 with options.refuse_bad("bench_scaling.py"):  # every option before any work (NaN, infinity), exit 2
     args = ap.parse_args(sys.argv[1:])
+    options.output_file("out", args.out)
     options.numbers("sizes_mm", args.sizes_mm, lo=0, unit="mm")
     for t in args.threads:
         options.integer("threads", t, lo=1)

@@ -114,6 +114,7 @@ def main():
     ap.add_argument("--out", default=os.path.join(REPO, "out", "bench", "solvers"))
     with options.refuse_bad("bench_solvers.py"):  # every option before any run (NaN, infinity), exit 2
         a = ap.parse_args()
+        options.output_folder("out", a.out)
         # a benchmark may measure a loose tolerance on purpose: range checked, no warning
         options.tolerance("adr_tolerance", a.adr_tolerance, zero_means_default=True, useful_max=1.0)
         options.numbers("sizes_mm", a.sizes_mm, lo=0, unit="mm")

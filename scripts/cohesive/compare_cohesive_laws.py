@@ -43,6 +43,7 @@ ap.add_argument("--rate-check", action="store_true", help="also run swelldem and
 ap.add_argument("--out", default="out/cohesive_laws")
 with options.refuse_bad("compare_cohesive_laws.py"):  # every option before any work (NaN, infinity), exit 2
     args = ap.parse_args(sys.argv[1:])
+    options.output_folder("out", args.out)
     options.numbers("size_mm", args.size_mm, count=2, lo=0, allowed="two finite lengths > 0 [mm] (15 x 15 mm or more places the aggregates)")
     options.integer("seed", args.seed, lo=0)
     options.number("deps", args.deps, lo=0, hi=1e-4, allowed="0 < deps < 1e-4 [-] (a quasi-static strain step)")

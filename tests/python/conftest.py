@@ -12,6 +12,15 @@ LAUNCHER = os.path.join(REPO, "scripts", "yade-swelldem")
 sys.path.insert(0, os.path.join(REPO, "py"))
 
 
+#: What YADE itself writes on stderr when it starts a script (`yade -n -x`), before the script's own lines.
+YADE_STARTUP = ("TCP python prompt on ", "Running script ", "XMLRPC info provider on ", "Using python version")
+
+
+def script_stderr(stderr):
+    """The lines of a script's stderr without YADE's own start-up lines (and blank lines)."""
+    return [line for line in stderr.splitlines() if line.strip() and not line.startswith(YADE_STARTUP)]
+
+
 def build_dir():
     return os.path.abspath(os.environ.get("SWELLDEM_BUILD_DIR") or os.path.join(REPO, "build"))
 

@@ -3,6 +3,7 @@
 measure (swelldem.measure) on synthetic fields, and a small run of the paper's Table 3.2 check
 (scripts/table_3_2.py). About 20 s on 2 cores."""
 import json
+import math
 import os
 import subprocess
 
@@ -302,14 +303,20 @@ def test_table_3_2_small_free_swelling(tmp_path):
 def test_compatible_swelling_gives_eps_inf_exactly(tmp_path):
     """d_inf = eps_inf x L on every contact is an affine expansion with no force: the whole chain
     (to_yade, per-contact overrides, ADR solver, strain measure) must return eps_inf x (xi(t_end) -
-    xi(t_start)) to the ADR tolerance (1e-5 of the contact loads: ~1e-4 relative on the strain)."""
+    xi(t_start)) to the ADR tolerance (1e-5 of the contact loads: ~1e-4 relative on the strain).
+    The reference is computed here from the inputs given on the command line and the paper's ISR
+    kinetics (Larive's sigmoid, tau_C = 50 d, tau_L = 100 d, to 3650 d), not read from the script."""
+    eps_inf, t_start, t_end, tau_c, tau_l = 1000e-6, 0.01, 3650.0, 50.0, 100.0
     out = tmp_path / "out"
     p = subprocess.run([LAUNCHER, "-n", "-x", TABLE_SCRIPT, "--size-mm", "8", "8", "--seed", "2", "--steps-per-decade", "3",
+                        "--case", "isr", "--eps-inf", repr(eps_inf), "--t-start", repr(t_start),
                         "--d-inf-rule", "contact-length", "--out", str(out)], capture_output=True, text=True, timeout=300,
                        env={**os.environ, "SWELLDEM_BUILD_DIR": build_dir()})
     assert p.returncode == 0, p.stdout[-3000:] + p.stderr[-3000:]
     res = json.loads((out / "results.json").read_text())
-    want = 1000e-6 * res["xi_end_minus_xi_start"]
+    xi = lambda t: (1 - math.exp(-t / tau_c)) / (1 + math.exp(-(t - tau_l) / tau_c))
+    want = eps_inf * (xi(t_end) - xi(t_start))  # 999.976e-6: xi(0.01 d) = 2.4e-5
+    assert res["times_days"][-1] == pytest.approx(t_end, rel=1e-12)
     for k in ("eps_final_x", "eps_final_y", "eps_final_side_x", "eps_final_side_y"):
         assert res[k] == pytest.approx(want, rel=2e-4), k
     assert abs(res["eps_final_xy"]) < 1e-4 * want

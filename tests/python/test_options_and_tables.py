@@ -13,7 +13,7 @@ import time
 
 import pytest
 
-from conftest import LAUNCHER, REPO, build_dir
+from conftest import LAUNCHER, REPO, build_dir, script_stderr
 
 from swelldem import options, report, scenario  # noqa: E402  (conftest puts py/ on the path)
 
@@ -225,3 +225,93 @@ def test_paper_tables_marks_runs_that_did_not_finish(tmp_path):
     # broken of the bonded contacts (3 of 100 MORTAR), the one new contact per kind apart
     assert any(r.startswith("| ISR | aging viscoelastic | MORTAR |") and "| 3.0 |" in r for r in lines)
     assert any(r.startswith("| isr-ve-dmg |") and "| 3 | finished |" in r for r in lines)
+
+
+def paper_tables(folder):
+    return subprocess.run([sys.executable, os.path.join(REPO, "scripts", "paper_tables.py"), str(folder)],
+                          capture_output=True, text=True, timeout=120)
+
+
+def test_paper_tables_reads_the_run_from_its_results_not_its_folder_name(tmp_path):
+    """A run with damage, viscoelastic, in a folder named as an elastic run without damage: tabulated
+    as what its results.json says (Table 3.6's viscoelastic rows), its folder shown beside it."""
+    write(tmp_path / "isr-el-nodmg", results(behaviour="viscoelastic", damage=True))
+    p = paper_tables(tmp_path)
+    assert p.returncode == 0, p.stderr
+    nodmg, dmg = p.stdout.split("### Normal contact forces with damage")
+    assert "| ISR | elastic | (not run) |" in nodmg and "| ISR | aging viscoelastic | (not run) |" in nodmg
+    assert sum(r.startswith("| ISR | aging viscoelastic | ") and "(not run)" not in r for r in dmg.splitlines()) == 3
+    assert "| ISR | elastic | (not run) |" in dmg
+    assert any(r.startswith("| isr-ve-dmg (folder isr-el-nodmg) |") for r in dmg.splitlines())
+    assert not any(r.startswith("| isr-el-nodmg |") for r in p.stdout.splitlines())
+
+
+def test_paper_tables_refuses_two_runs_of_the_same_case_naming_both(tmp_path):
+    write(tmp_path / "a", results(behaviour="elastic", damage=False))
+    write(tmp_path / "isr-el-nodmg", results(behaviour="elastic", damage=False))
+    write(tmp_path / "isr-ve-dmg", results())
+    p = paper_tables(tmp_path)
+    assert p.returncode == 1 and p.stdout == "" and "Traceback" not in p.stderr
+    assert p.stderr == (f"paper_tables.py: {tmp_path / 'a' / 'results.json'} and {tmp_path / 'isr-el-nodmg' / 'results.json'} are both "
+                        "runs of isr-el-nodmg (isr, elastic, damage off); allowed: one run of each scenario, behaviour and damage in a folder\n")
+
+
+@pytest.mark.parametrize("content", ["nothing", "empty run folders"])
+def test_paper_tables_refuses_a_folder_without_runs(tmp_path, content):
+    if content == "empty run folders":  # e.g. runs refused before any work, or a study stopped before its first step
+        (tmp_path / "isr-el-nodmg").mkdir()
+        (tmp_path / "notes.md").write_text("x")
+    p = paper_tables(tmp_path)
+    assert p.returncode == 1 and p.stdout == "" and "Traceback" not in p.stderr
+    assert p.stderr == (f"paper_tables.py: folder = {str(tmp_path)!r} holds no run (no <run>/results.json); allowed: a folder of "
+                        "swelling-test runs, one per subfolder <run>/results.json (scripts/paper_study.py --out)\n")
+
+
+# ------------------------------------------------------------------ an output folder that cannot be written
+
+BAD_OUT = {"/proc/x": lambda tmp: "/proc/x",
+           "an existing file": lambda tmp: str(tmp / "file"),
+           "a path under a file": lambda tmp: str(tmp / "file" / "run")}
+OUT_SCRIPTS = {"swelling_test.py": [LAUNCHER, "-j", "1", "-n", "-x", os.path.join(REPO, "scripts", "swelling_test.py"),
+                                    "--size-mm", "12", "12"],
+               "boundary_study.py": [LAUNCHER, "-j", "1", "-n", "-x", os.path.join(REPO, "scripts", "boundary_study.py"),
+                                     "--size-mm", "12", "12"],
+               "paper_study.py": [sys.executable, os.path.join(REPO, "scripts", "paper_study.py"), "--size-mm", "12", "12", "--jobs", "1"]}
+
+
+@pytest.mark.parametrize("case", list(BAD_OUT))
+@pytest.mark.parametrize("script", list(OUT_SCRIPTS))
+def test_an_unusable_output_folder_is_one_line_and_exit_2_before_any_work(tmp_path, script, case):
+    """The one check of every script's output folder (swelldem.options.output_folder): one line on
+    stderr naming out, its value and what is allowed, exit status 2, no traceback, nothing made."""
+    (tmp_path / "file").write_text("kept\n")
+    out = BAD_OUT[case](tmp_path)
+    before = sorted(os.listdir(tmp_path))
+    p = subprocess.run(OUT_SCRIPTS[script] + ["--out", out], capture_output=True, text=True, timeout=300, cwd=str(tmp_path),
+                       env={**os.environ, "SWELLDEM_BUILD_DIR": build_dir(), "PYTHONPATH": os.path.join(REPO, "py")})
+    assert p.returncode == 2, (p.returncode, p.stdout[-1500:], p.stderr[-1500:])
+    assert "Traceback" not in p.stderr
+    lines = script_stderr(p.stderr)
+    assert len(lines) == 1, p.stderr
+    assert lines[0].startswith(f"{script}: " + FORM.format("out", repr(out)) + "a folder that exists or can be made, and written into ("), lines[0]
+    assert "mesostructure" not in p.stdout, "refused before any work"
+    assert sorted(os.listdir(tmp_path)) == before and (tmp_path / "file").read_text() == "kept\n"
+    assert not os.path.exists("/proc/x")
+
+
+def test_output_folder_and_file_checks_make_nothing(tmp_path):
+    assert options.output_folder("out", str(tmp_path / "new" / "deeper")) == str(tmp_path / "new" / "deeper")
+    assert options.output_folder("out", str(tmp_path)) == str(tmp_path)
+    assert options.output_file("out", str(tmp_path / "new" / "b.json")) == str(tmp_path / "new" / "b.json")
+    assert os.listdir(tmp_path) == [], "a check leaves nothing behind (its probe is removed)"
+    (tmp_path / "f").write_text("")
+    for check, value, why in ((options.output_folder, "", "a folder name"),
+                              (options.output_folder, str(tmp_path / "f"), f"({tmp_path / 'f'} is a file)"),
+                              (options.output_folder, str(tmp_path / "f" / "g" / "h"), f"({tmp_path / 'f'} is a file, not a folder)"),
+                              (options.output_folder, "/proc/x/y", "(/proc takes no new folder: "),
+                              (options.output_file, str(tmp_path), f"({tmp_path} is a folder)"),
+                              (options.output_file, str(tmp_path / "f" / "b.json"), f"({tmp_path / 'f'} is a file)")):
+        with pytest.raises(options.OptionError) as e:
+            check("out", value)
+        assert str(e.value).startswith(FORM.format("out", repr(value))) and why in str(e.value), str(e.value)
+    assert sorted(os.listdir(tmp_path)) == ["f"]

@@ -9,7 +9,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from conftest import LAUNCHER, REPO, build_dir
+from conftest import LAUNCHER, REPO, build_dir, script_stderr
 from swelldem import meso, options
 from swelldem.dem import rebar
 
@@ -22,7 +22,7 @@ def assembly():
 
 
 def test_layout_gives_the_ratio_as_steel_area_over_the_section(assembly):
-    lay = rebar.layout(assembly, 0.02, n_bars=2)
+    lay = rebar.layout(assembly.width_m, assembly.height_m, 0.02, n_bars=2)
     assert lay.n_bars * lay.thickness_m / assembly.height_m == pytest.approx(0.02)
     assert lay.y_m == pytest.approx((assembly.height_m / 4, 3 * assembly.height_m / 4))
     n = round(assembly.width_m / (2 * lay.radius_m))
@@ -31,7 +31,7 @@ def test_layout_gives_the_ratio_as_steel_area_over_the_section(assembly):
 
 
 def test_carving_removes_exactly_the_discs_the_bar_overlaps(assembly):
-    lay = rebar.layout(assembly, 0.01)
+    lay = rebar.layout(assembly.width_m, assembly.height_m, 0.01)
     carved = rebar.carve(assembly, lay)
     y = lay.y_m[0]
     overlapping = np.abs(assembly.y - y) < assembly.r + lay.radius_m
@@ -47,11 +47,27 @@ def test_carving_removes_exactly_the_discs_the_bar_overlaps(assembly):
 @pytest.mark.parametrize("kw,name", [(dict(ratio=0.2), "rebar_ratio"), (dict(ratio=-0.01), "rebar_ratio"),
                                      (dict(ratio=float("nan")), "rebar_ratio"), (dict(ratio=0.01, n_bars=0), "rebar_bars"),
                                      (dict(ratio=0.01, y_m=[0.0]), "rebar_y_m[0]"), (dict(ratio=0.01, y_m=[0.1]), "rebar_y_m[0]"),
-                                     (dict(ratio=0.01, young=0.0), "rebar_young")])
+                                     (dict(ratio=0.01, young=0.0), "rebar_young"), (dict(ratio=0.01, n_bars=6), "rebar_bars"),
+                                     (dict(ratio=0.01, n_bars=2, y_m=[4e-3, 5e-3]), "rebar_y_m[1]")])
 def test_bad_layout_named_with_its_value(assembly, kw, name):
     with pytest.raises(options.OptionError) as e:
-        rebar.layout(assembly, **kw)
+        rebar.layout(assembly.width_m, assembly.height_m, **kw)
     assert f"swelldem: {name} = " in str(e.value) and "allowed" in str(e.value)
+
+
+def test_the_layout_that_fits_is_decided_by_the_options_alone():
+    """16 mm: bars of 0.4 mm discs need a cover of 2 Rmax = 0.96 mm to the sides and between them,
+    h / (2 n) >= r + 0.96 mm, so 5 bars fit (1.6 mm >= 1.36 mm) and 6 do not (1.33 mm); the count
+    and the allowed range are in the message, computed without a mesostructure."""
+    lay = rebar.layout(16e-3, 16e-3, 0.01, n_bars=5)
+    assert lay.radius_m == pytest.approx(0.4e-3) and lay.n_discs == 20
+    assert min(lay.y_m) - lay.radius_m >= 2 * 0.48e-3 and np.min(np.diff(lay.y_m)) - 2 * lay.radius_m >= 2 * 0.48e-3
+    with pytest.raises(options.OptionError, match=r"^swelldem: rebar_bars = 6 is out of range; allowed: 1 <= rebar_bars <= 5: "):
+        rebar.layout(16e-3, 16e-3, 0.01, n_bars=6)
+    # the SwellingTest's check, before any work, is the same
+    from swelldem import scenario
+    with pytest.raises(options.OptionError, match=r"rebar_bars = 6 is out of range; allowed: 1 <= rebar_bars <= 5"):
+        scenario.SwellingTest(size_mm=(16, 16), rebar_ratio=0.01, rebar_bars=6).validate()
 
 
 def run(tmp_path, name, *args):
@@ -123,9 +139,18 @@ def test_bar_stress_is_the_bar_force_over_its_section(yade_run, tmp_path):
 
 
 @pytest.mark.parametrize("args,text", [(["--rebar-ratio", "0.5"], "rebar_ratio = 0.5"), (["--rebar-ratio", "nan"], "rebar_ratio = nan"),
-                                       (["--rebar-ratio", "0.01", "--rebar-bars", "0"], "rebar_bars = 0")])
+                                       (["--rebar-ratio", "0.01", "--rebar-bars", "0"], "rebar_bars = 0"),
+                                       # layouts that do not fit a 12 mm specimen: 20 bars overlap, 5 leave less than 2 Rmax of concrete
+                                       (["--size-mm", "12", "12", "--rebar-ratio", "0.01", "--rebar-bars", "20"],
+                                        "rebar_bars = 20 is out of range; allowed: 1 <= rebar_bars <= 4: "),
+                                       (["--size-mm", "12", "12", "--rebar-ratio", "0.01", "--rebar-bars", "5"],
+                                        "rebar_bars = 5 is out of range; allowed: 1 <= rebar_bars <= 4: ")])
 def test_swelling_test_refuses_bad_rebar_before_any_work(tmp_path, args, text):
+    """Refused with one line on stderr (parameter, value, allowed range) and exit status 2 before the
+    mesostructure is made: no output folder is left."""
     out = tmp_path / "run"
     proc = subprocess.run([LAUNCHER, "-j", "1", "-n", "-x", SCRIPT, *args, "--out", str(out)], capture_output=True, text=True,
                           timeout=300, env=dict(os.environ, SWELLDEM_BUILD_DIR=build_dir()))
-    assert proc.returncode == 2 and text in proc.stdout + proc.stderr and not out.exists()
+    assert proc.returncode == 2 and text in proc.stderr and not out.exists(), (proc.returncode, proc.stderr[-2000:])
+    assert "Traceback" not in proc.stderr and len(script_stderr(proc.stderr)) == 1, proc.stderr
+    assert "mesostructure" not in proc.stdout

@@ -3,6 +3,7 @@
 the output contract, the paper's qualitative findings, the comparison table, bad input."""
 import json
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -282,7 +283,9 @@ def test_implicit_solver_with_damage_cracks_as_the_adr(tmp_path):
 def test_a_stopped_run_says_so_and_keeps_its_steps(tmp_path, sig):
     """SIGTERM or Ctrl-C during a run: results.json ends with status 'interrupted: <signal>', the
     steps already done are kept, the process exits non-zero (without catching, SIGTERM kills the
-    process and leaves 'running')."""
+    process and leaves 'running'). Kept: every step the solver announced on stdout ('swelldem:
+    step k/N', printed just before the recorder writes it) is in results.json, and no more; the
+    run stopped before its N steps, the N that results.json records (n_steps)."""
     out = tmp_path / "run"
     p = subprocess.Popen([LAUNCHER, "-n", "-x", SCRIPT, "--size-mm", "16", "16", "--scenario", "isr", "--behaviour",
                           "viscoelastic", "--steps-per-decade", "20", "--out", str(out)],
@@ -298,12 +301,36 @@ def test_a_stopped_run_says_so_and_keeps_its_steps(tmp_path, sig):
                 pass
         time.sleep(0.2)
     p.send_signal(sig)
-    _, err = p.communicate(timeout=300)
+    out, err = p.communicate(timeout=300)
     res = json.loads(results.read_text())
     assert p.returncode != 0
     assert res["status"] == f"interrupted: {signal.Signals(sig).name}", (res["status"], err[-2000:])
-    assert len(res["times_days"]) >= 3 and len(res["times_days"]) < res.get("n_steps", 10 ** 9)
+    announced = re.findall(r"^swelldem: step (\d+)/(\d+) ", out, re.M)
+    k, n = map(int, announced[-1])
+    assert len(res["times_days"]) == k >= 3, (len(res["times_days"]), announced[-3:])
+    assert k < n == res["n_steps"]  # 16 mm ISR at 20 steps a decade from 1 to 3650 d: 72 steps
+    assert res["times_days"][-1] < 3650 and "Traceback" not in err
     assert res["updated"] <= time.time()
+
+
+def test_a_failed_run_ends_with_its_status_line_not_a_traceback(tmp_path):
+    """A run the solver cannot finish (a huge swelling: eps_inf = 3, elastic, no damage, ADR; 12 mm
+    at 2 steps a decade stops with a non-finite contact force at step 5 of 8, in about 10 s):
+    results.json says 'failed: <the solver's message>' and keeps every step before the one the
+    message names; the process ends with that status as its last line on stderr, exit status 1,
+    no Python traceback."""
+    out = tmp_path / "run"
+    _, p = swelling_test(out, "--scenario", "isr", "--behaviour", "elastic", "--no-damage", "--solver", "adr", "--eps-inf", "3",
+                         "--steps-per-decade", "2", check=False)
+    assert p.returncode == 1, (p.returncode, p.stderr[-3000:])
+    assert "Traceback" not in p.stderr, p.stderr[-3000:]
+    res = json.loads((out / "results.json").read_text())
+    m = re.match(r"failed: swelldem: AdrLogTimeIntegrator stopped at physical step (\d+)/(\d+) \(t = ", res["status"])
+    assert m, res["status"]
+    k, n = map(int, m.groups())
+    assert len(res["times_days"]) == k - 1 >= 1 and n == res["n_steps"] == 8
+    assert p.stderr.strip().splitlines()[-1] == f"swelling_test.py: {res['status']} ({out / 'results.json'})"
+    assert "swelling_test:" not in p.stdout  # the summary of a finished run is not printed
 
 
 def test_a_killed_run_is_reported_unfinished(tmp_path):

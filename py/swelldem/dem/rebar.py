@@ -19,12 +19,19 @@ them off the bars). Its steel (ConcreteMat.steel) makes three contact kinds:
 The reinforcement ratio rho is the steel area over the specimen's cross-section: rho = n t_b / H
 for n bars in a specimen of height H, so t_b = rho H / n. The bars are evenly spaced:
 y_b = H (k + 1/2) / n.
+
+The layout is a function of the options alone (size, ratio, bar count, the generator's disc
+radii), not of the generated discs, so that a layout that does not fit is refused before the
+mesostructure is made (SwellingTest.validate). It fits when every bar keeps a concrete cover of
+at least one largest disc's diameter (2 Rmax) to the specimen's sides and the same clear spacing
+to its neighbours: otherwise the carving leaves no concrete there for the bond to hold.
 """
 from dataclasses import dataclass
 
 import numpy as np
 
 from .. import options
+from ..meso import MesoParameters
 from . import scene as sc
 from .platens import facing_discs
 
@@ -51,23 +58,59 @@ class RebarLayout:
     yield_stress: float = STEEL_YIELD
 
 
-def layout(assembly, ratio, n_bars=1, young=STEEL_YOUNG, yield_stress=STEEL_YIELD, y_m=None):
-    """The RebarLayout of `ratio` [-] (0 < ratio <= MAX_RATIO) in n_bars bars, evenly spaced
-    unless y_m [m] gives their heights; OptionError (naming the value and the allowed range) for a
-    ratio, modulus, yield stress or bar position out of range, before anything is built."""
+def bar_discs(width_m, r_mean_m=None):
+    """(n_discs, radius [m]) of the touching discs of a bar that spans width_m [m]: as many as discs
+    of the packing's mean radius r_mean_m would take (default: the generator's nominal mean,
+    (Rmin + Rmax) / 2, its radii being uniform in [Rmin, Rmax]), resized to span the width exactly."""
+    if r_mean_m is None:
+        p = MesoParameters()
+        r_mean_m = 0.5e-3 * (p.rmin_mm + p.rmax_mm)
+    n_discs = max(1, int(round(width_m / (2 * r_mean_m))))
+    return n_discs, width_m / (2 * n_discs)
+
+
+def min_cover_m():
+    """The least concrete cover of a bar [m], to a side and (as clear spacing) to the next bar: one
+    diameter of the generator's largest disc, 2 Rmax."""
+    return 2 * MesoParameters().rmax_mm * 1e-3
+
+
+def layout(width_m, height_m, ratio, n_bars=1, young=STEEL_YOUNG, yield_stress=STEEL_YIELD, y_m=None):
+    """The RebarLayout of `ratio` [-] (0 < ratio <= MAX_RATIO) in n_bars bars across a specimen of
+    width_m x height_m [m], evenly spaced unless y_m [m] gives their heights; OptionError (naming
+    the value and the allowed range) for a ratio, modulus, yield stress, bar count or bar position
+    out of range or a layout that does not fit (a cover or clear spacing below min_cover_m()). Uses
+    only these values, not the generated discs: run before any work."""
     options.number("rebar_ratio", ratio, lo=0, hi=MAX_RATIO, hi_incl=True)
     options.integer("rebar_bars", n_bars, lo=1)
     options.number("rebar_young", young, lo=0, unit="Pa")
     options.number("rebar_yield_stress", yield_stress, lo=0, unit="Pa")
-    h = float(assembly.height_m)
-    n_discs = max(1, int(round(assembly.width_m / (2 * float(np.mean(assembly.r))))))
-    r = assembly.width_m / (2 * n_discs)  # touching discs that span the width exactly
-    ys = tuple(h * (k + 0.5) / n_bars for k in range(n_bars)) if y_m is None else tuple(float(v) for v in y_m)
-    if len(ys) != n_bars:
-        options.bad("rebar_y_m", y_m, f"{n_bars} heights, one per bar")
+    w, h = float(width_m), float(height_m)
+    n_discs, r = bar_discs(w)
+    cover = min_cover_m()
+    if y_m is None:
+        # evenly spaced: the cover to the sides, h / (2 n) - r, is half the clear spacing, h / n - 2 r
+        n_max = int(np.floor(h / (2 * (r + cover)) * (1 + 1e-12)))
+        if n_bars > n_max:
+            options.bad("rebar_bars", n_bars,
+                        (f"1 <= rebar_bars <= {n_max}" if n_max >= 1 else "none (rebar_ratio = 0)")
+                        + f": bars of discs of diameter {2e3 * r:.3g} mm, evenly spaced across the {1e3 * h:g} mm height, each with "
+                        f"a concrete cover of at least {1e3 * cover:.3g} mm (2 Rmax) to the sides and the next bar")
+        ys = tuple(h * (k + 0.5) / n_bars for k in range(n_bars))
+    else:
+        ys = tuple(float(v) for v in y_m)
+        if len(ys) != n_bars:
+            options.bad("rebar_y_m", y_m, f"{n_bars} heights, one per bar")
+    lo, hi = r + cover, h - r - cover
     for k, y in enumerate(ys):
-        if not (np.isfinite(y) and r < y < h - r):
-            options.bad(f"rebar_y_m[{k}]", y, f"a height inside the specimen, {r:.4g} < y < {h - r:.4g} [m] (one disc radius from its sides)")
+        if not (np.isfinite(y) and lo <= y <= hi):
+            options.bad(f"rebar_y_m[{k}]", y, f"a height inside the specimen with a concrete cover of {1e3 * cover:.3g} mm (2 Rmax): "
+                                              f"{lo:.4g} <= y <= {hi:.4g} [m]")
+    order = np.argsort(ys)
+    for k0, k in zip(order[:-1], order[1:]):
+        if ys[k] - ys[k0] < 2 * r + cover:
+            options.bad(f"rebar_y_m[{k}]", ys[k], f"a height at least {2 * r + cover:.4g} m from every other bar's "
+                                                  f"(a clear spacing of {1e3 * cover:.3g} mm, 2 Rmax)")
     return RebarLayout(ratio=float(ratio), n_bars=int(n_bars), y_m=ys, thickness_m=float(ratio) * h / n_bars, radius_m=r,
                        n_discs=n_discs, young=float(young), yield_stress=float(yield_stress))
 

@@ -141,6 +141,7 @@ class StepRecorder:
             r["per_kind"][name].setdefault("born_broken", []).append(int((~bonded)[sel].sum()))
         r["adr_iterations"] = solver.totalIterations
         r["fallback_steps"] = fallback_steps(solver)
+        r["n_steps"] = int(solver.nSteps)  # the run's physical steps, done or not: a run that stopped has fewer times_days
         r["unbalanced_history"] = {"every": int(getattr(solver, "historyEvery", 0)),
                                    "iteration": [int(v) for v in getattr(solver, "historyIteration", [])],
                                    "ratio": list(getattr(solver, "historyUnbalanced", []))}
