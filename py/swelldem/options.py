@@ -105,22 +105,31 @@ def choice(name, value, allowed):
     return value
 
 
-def tolerance(name, value, zero_means_default=False, useful_max=USEFUL_TOLERANCE_MAX):
+def tolerance(name, value, zero_means_default=False, useful_max=USEFUL_TOLERANCE_MAX, solver="adr"):
     """An unbalanced-force tolerance: 0 < value < 1 (or 0 when zero_means_default); a value looser
-    than `useful_max` is accepted but warns on stderr, since the run then reports an
-    equilibrium it has not reached (docs/performance.md section 1)."""
+    than `useful_max` is accepted but warns on stderr with what it costs under `solver` ('adr' or
+    'implicit'), since the run then reports an equilibrium it has not reached."""
     if zero_means_default and is_number(value) and value == 0:
         return 0.0
     number(name, value, lo=0, hi=1, allowed=("0 (the solver's own) or " if zero_means_default else "") + f"0 < {name} < 1")
     if value > useful_max:
-        warn_loose_tolerance(name, value, useful_max)
+        warn_loose_tolerance(name, value, useful_max, solver)
     return float(value)
 
 
-def warn_loose_tolerance(name, value, useful_max=USEFUL_TOLERANCE_MAX):
+#: What a loose tolerance costs, per solver (docs/performance.md sections 1 and 5).
+LOOSE_TOLERANCE_COST = {
+    "adr": "docs/performance.md section 1: 1e-3 leaves 3-6 % error on the forces, 1e-2 11-15 %",
+    "implicit": ("the implicit solver meets it only after a Newton move, so a step whose contacts keep their state is exact "
+                 "whatever it, but with damage the broken contacts' states are left unsettled (docs/performance.md section 5: "
+                 "0.9 moved the strains by up to 0.7 % on 12 mm specimens); its default 1e-10 is the measured one"),
+}
+
+
+def warn_loose_tolerance(name, value, useful_max=USEFUL_TOLERANCE_MAX, solver="adr"):
     """One line on stderr (where a script's user looks; Python's warnings filter could hide it)."""
     sys.stderr.write(f"swelldem: warning: {name} = {value!r} is looser than the useful range (<= {useful_max:g}; "
-                     f"docs/performance.md section 1: 1e-3 leaves 3-6 % error on the forces, 1e-2 11-15 %); the run goes on\n")
+                     f"{LOOSE_TOLERANCE_COST.get(solver, LOOSE_TOLERANCE_COST['adr'])}); the run goes on\n")
 
 
 def _folder_problem(folder):

@@ -125,7 +125,7 @@ class SwellingTest:
             _bad("size_mm", self.size_mm, "two finite lengths > 0 [mm]")
         options.integer("seed", self.seed, lo=0)
         options.number("steps_per_decade", self.steps_per_decade, lo=0)
-        options.tolerance("tolerance", self.tolerance, zero_means_default=True)
+        options.tolerance("tolerance", self.tolerance, zero_means_default=True, solver=self.solver)
         options.number("t_start_days", self.t_start_days, lo=0, unit="day")
         if not (options.is_number(self.t_end_days) and self.t_end_days == 0):
             options.number("t_end_days", self.t_end_days, lo=self.t_start_days, unit="day",

@@ -211,14 +211,28 @@ def test_bad_input_is_refused_before_work(tmp_path, args, needle):
     assert not (tmp_path / "bad" / "results.json").exists()
 
 
-def test_a_loose_tolerance_warns_and_runs(tmp_path):
-    """A tolerance looser than the useful range (docs/performance.md section 1: 1e-3 leaves 3-6 %
-    error, 1e-2 is useless) is accepted with a warning naming it and the range."""
-    res, p = swelling_test(tmp_path / "loose", "--tolerance", "0.5", "--t-end", "1.5", "--no-damage", "--behaviour", "elastic")
-    assert "swelldem: warning: tolerance = 0.5 is looser than the useful range (<= 0.001" in p.stderr, p.stderr[-2000:]
-    assert res["status"] == "finished" and res["tolerance"] == 0.5
-    _, q = swelling_test(tmp_path / "tight", "--tolerance", "1e-3", "--t-end", "1.5", "--no-damage", "--behaviour", "elastic")
+def test_a_loose_tolerance_warns_and_still_moves_the_specimen(tmp_path):
+    """A tolerance looser than the useful range is accepted with a warning naming it, the range and
+    what it costs under the solver used. The implicit solver meets it only after a Newton move: a
+    first iteration, which measures the step's load before anything moved, has a ratio at or below
+    about 1 and once committed the unmoved state at 0.9 (strain exactly 0 against 903e-6). Without
+    damage each step is linear, so one move lands on the equilibrium but for the rotations' shift
+    and the kept factor (measured: final strains within 1.9e-4 relative of the default 1e-10, and
+    1.0 when the unmoved state was committed); the bound is 1e-3."""
+    common = ("--t-end", "100", "--no-damage", "--behaviour", "elastic")
+    res, p = swelling_test(tmp_path / "loose", "--tolerance", "0.9", *common)
+    assert "swelldem: warning: tolerance = 0.9 is looser than the useful range (<= 0.001" in p.stderr, p.stderr[-2000:]
+    assert "the implicit solver meets it only after a Newton move" in p.stderr
+    assert res["status"] == "finished" and res["tolerance"] == 0.9
+    ref, q = swelling_test(tmp_path / "default", *common)
     assert "warning: tolerance" not in q.stderr
+    for axis in ("x", "y"):
+        e, e0 = res[f"swelling_strain_{axis}"][-1], ref[f"swelling_strain_{axis}"][-1]
+        print("measured", axis, e, e0, abs(e - e0) / abs(e0))
+        assert abs(e0) > 1e-4, "the reference must swell for this test to test anything"
+        assert abs(e - e0) <= 1e-3 * abs(e0), (axis, e, e0)
+    _, a = swelling_test(tmp_path / "adr", "--solver", "adr", "--tolerance", "1e-2", *common)
+    assert "1e-3 leaves 3-6 % error on the forces" in a.stderr, a.stderr[-2000:]
 
 
 def test_broken_counts_are_of_bonded_contacts_only(tmp_path):
