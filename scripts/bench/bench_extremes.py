@@ -9,7 +9,7 @@ implicit solver handed to dynamic relaxation (fallback) with the time each took.
 
   /usr/bin/python3 scripts/bench/bench_extremes.py --out out/bench/extremes [--seeds 1 3 5] [--jobs 1]
 
-Runs already finished in --out are kept (delete a run's folder to remeasure). Writes
+Runs already ended in --out (finished or failed) are kept: delete a run's folder to remeasure. Writes
 extremes.json, extremes.csv and extremes.md in --out."""
 import argparse
 import csv
@@ -38,6 +38,8 @@ CASES = {
                          ("--scenario", "asr-coarse", "--gel-fraction", "1", "--steps-per-decade", "10", "--strength-scale", "1e-9")),
     "aggregate x1e3": ("aggregate contacts 1000 x stiffer, elastic",
                        ("--behaviour", "elastic", "--steps-per-decade", "3", "--aggregate-young", f"{AGGREGATE_YOUNG * 1e3:g}")),
+    "aggregate x1e3 ve": ("aggregate contacts 1000 x stiffer, viscoelastic, 10 steps a decade",
+                          ("--aggregate-young", f"{AGGREGATE_YOUNG * 1e3:g}")),
     "aggregate x1e6": ("aggregate contacts 1e6 x stiffer, elastic",
                        ("--behaviour", "elastic", "--steps-per-decade", "3", "--aggregate-young", f"{AGGREGATE_YOUNG * 1e6:g}")),
     "tolerance 0.9": ("--tolerance 0.9, viscoelastic", ("--steps-per-decade", "3", "--tolerance", "0.9")),
@@ -54,7 +56,7 @@ def run_one(out, case, solver, seed, timeout):
     if os.path.exists(path):
         with open(path) as f:
             res = json.load(f)
-        if res.get("status") == "finished":
+        if res.get("status") != "running":  # finished or failed: kept (a killed run stays 'running')
             return folder, res, None
     args = [LAUNCHER, "-j", "1", "-n", "-x", SCRIPT, *SIZE, "--seed", str(seed), "--solver", solver, *CASES[case][1], "--out", folder]
     t0 = time.time()
