@@ -3,8 +3,8 @@
 """Both solvers at the extremes (docs/performance.md section 5): each case of the table below on a
 12 x 12 mm specimen with damage, three seeds, `--solver adr` and `--solver implicit`, each through
 scripts/swelling_test.py in its own process. For each case it tells whether every run finished,
-the implicit runs' final strains and broken shares against the ADR's (same seed; the allowance is
-the ADR's seed-to-seed range, or its tolerance error where that is larger), and the steps the
+the implicit runs' seed means of the final strains and broken shares against the ADR's seed range
+(widened by the ADR's own error: see compare()), and the steps the
 implicit solver handed to dynamic relaxation (fallback) with the time each took.
 
   /usr/bin/python3 scripts/bench/bench_extremes.py --out out/bench/extremes [--seeds 1 3 5] [--jobs 1]
@@ -81,33 +81,36 @@ def summary(res):
             "eps_y": res["swelling_strain_y"][-1] if res["swelling_strain_y"] else None,
             "broken_pct": {k: (100.0 * last[k] / n[k] if n.get(k) and last[k] is not None else None) for k in KIND_NAMES},
             "iterations": res.get("adr_iterations"), "wall_s": res.get("wall_s"), "steps": len(res["times_days"]),
-            "fallback": res.get("fallback_steps", [])}
+            "fallback": res.get("fallback_steps", []), "n_contacts": n}
 
 
-def compare(adr, imp):
-    """Per seed, implicit minus ADR against the ADR's spread over seeds (max - min), for the strains
-    (relative, at least the ADR's tolerance error) and the broken shares (points)."""
+def compare(adr, imp, n_contacts):
+    """The implicit runs' seed mean of each result against the ADR's seed range, widened by the
+    ADR's own error: its tolerance error for the strains (ADR_TOLERANCE_ERROR of the value) and one
+    contact of the kind for the broken shares. Returns {result: (implicit mean, lo, hi)}. Where the
+    ADR breaks 95 % of the bonded contacts or more, the specimen is a loose assembly of discs with
+    no unique equilibrium strain (any arrangement whose contacts carry nothing is one): its strains
+    are not compared, only its broken shares ('loose' in the result)."""
     seeds = sorted(set(adr) & set(imp))
     if not seeds:
         return None
-    worst = {}
-
-    def spread(vals):
-        vals = [v for v in vals if v is not None]
-        return max(vals) - min(vals) if vals else 0.0
-
-    for key in ("eps_x", "eps_y"):
-        vals = [adr[s][key] for s in seeds]
-        allow = max(spread(vals), ADR_TOLERANCE_ERROR * max(abs(v) for v in vals))
-        dev = max(abs(imp[s][key] - adr[s][key]) for s in seeds)
-        worst[key] = (dev, allow)
+    out = {}
+    total = sum(n_contacts.values())
+    loose = all(sum(adr[s]["broken_pct"][k] * n_contacts[k] / 100 for k in KIND_NAMES) >= 0.95 * total for s in seeds)
+    if loose:
+        out["loose"] = True
+    else:
+        for key in ("eps_x", "eps_y"):
+            vals = [adr[s][key] for s in seeds]
+            mean = sum(imp[s][key] for s in seeds) / len(seeds)
+            out[key] = (mean, min(vals) - ADR_TOLERANCE_ERROR * abs(min(vals)), max(vals) + ADR_TOLERANCE_ERROR * abs(max(vals)))
     for k in KIND_NAMES:
         vals = [adr[s]["broken_pct"][k] for s in seeds]
-        if any(v is None for v in vals):
+        if any(v is None for v in vals) or not n_contacts.get(k):
             continue
-        dev = max(abs(imp[s]["broken_pct"][k] - adr[s]["broken_pct"][k]) for s in seeds)
-        worst[f"broken_{k}"] = (dev, spread(vals))
-    return worst
+        one = 100.0 / n_contacts[k]
+        out[f"broken_{k}"] = (sum(imp[s]["broken_pct"][k] for s in seeds) / len(seeds), max(0.0, min(vals) - one), min(100.0, max(vals) + one))
+    return out
 
 
 def main():
@@ -132,7 +135,8 @@ def main():
     for case in a.cases:
         per = table[case]
         fin = {s: {seed: e for seed, e in per[s].items() if e["status"] == "finished"} for s in SOLVERS}
-        cmp = compare(fin["adr"], fin["implicit"])
+        n_contacts = next((e["n_contacts"] for e in fin["adr"].values()), {})
+        cmp = compare(fin["adr"], fin["implicit"], n_contacts)
         fb = [f for e in fin["implicit"].values() for f in e["fallback"]]
         row = {"case": case, "what": CASES[case][0]}
         for s in SOLVERS:
@@ -143,8 +147,11 @@ def main():
         row["fallback_steps"] = len(fb)
         row["fallback_wall_s"] = " ".join(f"{f['wall_s']:.1f}" for f in fb)
         if cmp:
-            row["within"] = all(d <= allow * (1 + 1e-9) for d, allow in cmp.values())
-            row["deviation"] = "; ".join(f"{k} {d:.3g}/{allow:.3g}" for k, (d, allow) in cmp.items())
+            loose = cmp.pop("loose", False)
+            row["within"] = all(lo <= m <= hi for m, lo, hi in cmp.values())
+            row["deviation"] = ("loose assembly, strains not compared; " if loose else "") + "; ".join(
+                f"{k} {m:.3g} in [{lo:.3g}, {hi:.3g}]" if lo <= m <= hi else f"{k} {m:.3g} OUTSIDE [{lo:.3g}, {hi:.3g}]"
+                for k, (m, lo, hi) in cmp.items())
         else:
             row["within"], row["deviation"] = None, "no seed finished with both solvers"
         rows.append(row)
@@ -155,7 +162,7 @@ def main():
         w.writeheader()
         w.writerows(rows)
     lines = ["| case | ADR finished | implicit finished | ADR s (iterations) | implicit s (iterations) | fallback steps (s each) | "
-             "implicit within the ADR's spread | worst deviation / allowance (strain relative, shares in points) |",
+             "implicit within the ADR's range | implicit seed mean in [ADR range] (strains; broken shares in %) |",
              "|---|---|---|---|---|---|---|---|"]
     for r in rows:
         ended = {s: f" ({r[f'{s}_ended']})" if r[f"{s}_ended"] else "" for s in SOLVERS}
