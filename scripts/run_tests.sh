@@ -10,4 +10,6 @@ echo "== ctest"
 (cd "$BUILD" && ctest --output-on-failure -j2)
 echo "== pytest"
 cd "$REPO"
-SWELLDEM_BUILD_DIR=$BUILD PYTHONPATH=$REPO/py /usr/bin/python3 -m pytest -p no:cacheprovider tests/python "$@"
+# two workers, each test file on one of them (a file's module-scoped runs are made once): the
+# tests are YADE processes of one thread each, two at a time on a 2-core machine
+SWELLDEM_BUILD_DIR=$BUILD PYTHONPATH=$REPO/py /usr/bin/python3 -m pytest -p no:cacheprovider -n 2 --dist loadfile tests/python "$@"
