@@ -229,9 +229,12 @@ def report_study(a):
                 made[f"unbalanced_{d}"], made[f"forces_{d}"] = f"{sc}_unbalanced_{d}.png", f"{sc}_forces_{d}.png"
         figures.append((sc, made))
     all_done = len(runs) == 12 and all(report.run_state(r) == "finished" for r in runs.values())
+    # the tolerance the runs record (the ADR's class default unless told otherwise): stated by the runs, not here
+    tols = sorted({r["tolerance"] for r in runs.values() if r.get("tolerance")})
+    adr = f"ADR tolerance {', '.join(f'{t:g}' for t in tols)}" if tols else "ADR at its default tolerance"
     index = [f"# The paper's study at {a.size_mm[0]:g} x {a.size_mm[1]:g} mm", "",
              f"12 swelling tests (scripts/swelling_test.py), seed {a.seed}, {a.steps_per_decade:g} steps a decade, "
-             f"{'ADR tolerance 1e-4' if a.solver == 'adr' else 'implicit solver (exact equilibria)'}. {report.size_note({'config': {'size_mm': a.size_mm}})} "
+             f"{adr if a.solver == 'adr' else 'implicit solver (exact equilibria)'}. {report.size_note({'config': {'size_mm': a.size_mm}})} "
              f"{'Every run finished.' if all_done else 'Not every run finished: see the status column and the runs logs (<run>.log).'}",
              "", "Command: `" + " ".join(["/usr/bin/python3", "scripts/paper_study.py", "--size-mm", f"{a.size_mm[0]:g}", f"{a.size_mm[1]:g}",
                                            "--jobs", str(a.jobs), "--out", a.out, "--seed", str(a.seed),

@@ -4,6 +4,7 @@
   scripts/yade-swelldem -n -x scripts/swelling_test.py --scenario isr|asr-fine|asr-coarse \
       --behaviour elastic|viscoelastic [--no-damage] [--size-mm W H] [--seed S] \
       [--steps-per-decade N] [--tolerance TOL] [--kind-param MORTAR.tensileStrength=5e6 ...] \
+      [--solver-param fallbackIterations=3 ...] \
       [--temperature-c T | --temperature-csv FILE] [--boundary-x free|fixed|stress:S|spring:K] \
       [--boundary-y ...] [--rebar-ratio R] --out DIR
 
@@ -11,7 +12,7 @@ writes DIR/results.json, DIR/table.md, DIR/table.csv, DIR/*.png (swelling strain
 force quantiles, crack map) and DIR/vtk/ (ParaView: particles and contacts .vtp files of the last step,
 or of every k-th with --vtk-every k, and particles.pvd / contacts.pvd with the times in days).
 The options are the fields of swelldem.scenario.SwellingTest; --kind-param sets any ContactKind
-attribute of one kind (see `--help`).
+attribute of one kind, --solver-param any setting of the solver (see `--help`).
 
 As a yade-batch job, each table column sets the field of its name and each line writes into
 out/<table name>/<description> (docs/scenarios.md, "Parameter sweeps with yade-batch"):

@@ -105,13 +105,12 @@ def choice(name, value, allowed):
     return value
 
 
-def tolerance(name, value, zero_means_default=False, useful_max=USEFUL_TOLERANCE_MAX, solver="adr"):
-    """An unbalanced-force tolerance: 0 < value < 1 (or 0 when zero_means_default); a value looser
-    than `useful_max` is accepted but warns on stderr with what it costs under `solver` ('adr' or
-    'implicit'), since the run then reports an equilibrium it has not reached."""
-    if zero_means_default and is_number(value) and value == 0:
-        return 0.0
-    number(name, value, lo=0, hi=1, allowed=("0 (the solver's own) or " if zero_means_default else "") + f"0 < {name} < 1")
+def tolerance(name, value, useful_max=USEFUL_TOLERANCE_MAX, solver="adr"):
+    """An unbalanced-force tolerance: 0 < value < 1; a value looser than `useful_max` is accepted
+    but warns on stderr with what it costs under `solver` ('adr' or 'implicit'), since the run then
+    reports an equilibrium it has not reached. (A setting left to the solver's own default is not
+    passed here: the default lives in the plugin's class.)"""
+    number(name, value, lo=0, hi=1, allowed=f"0 < {name} < 1")
     if value > useful_max:
         warn_loose_tolerance(name, value, useful_max, solver)
     return float(value)

@@ -216,7 +216,9 @@ def _history(res):
 
 
 def _tolerance(res):
-    return res.get("tolerance") or res.get("config", {}).get("tolerance") or 1e-4
+    """The tolerance a run used (results.json 'tolerance', the solver's as run), or None if the
+    file does not say (then no tolerance line is drawn)."""
+    return res.get("tolerance") or (res.get("solver_settings") or {}).get("tolerance") or res.get("config", {}).get("tolerance")
 
 
 def plot_unbalanced(path, res):
@@ -238,7 +240,8 @@ def plot_unbalanced(path, res):
     ro = np.array(res.get("step_at_round_off", [False] * n), dtype=bool)[:n]
     if ro.any():  # steps whose load was too small for the tolerance: ended at the positions' round-off
         ax.semilogy(ends[:n][ro], at_end[:n][ro], "x", color="tab:red", label="step ended at the round-off limit")
-    ax.axhline(_tolerance(res), color="k", lw=0.8, ls=":", label=f"tolerance {_tolerance(res):g}")
+    if _tolerance(res):
+        ax.axhline(_tolerance(res), color="k", lw=0.8, ls=":", label=f"tolerance {_tolerance(res):g}")
     trans = blended_transform_factory(ax.transData, ax.transAxes)
     for k, x in enumerate(ends):
         ax.axvline(x, color="0.6", lw=0.4, zorder=0)
@@ -265,7 +268,7 @@ def _free_swelling_curve(ax, res, t_last, specimen_max):
     legend of both axes."""
     cfg = res.get("config") or {}
     eps_inf = cfg.get("eps_inf", EPS_INF)
-    t0 = cfg.get("t_start_days", 1.0)
+    t0 = (res.get("solver_settings") or {}).get("tStart", cfg.get("t_start_days", 1.0))  # --solver-param tStart= has the last word
     tau_c, tau_l, _ = KINETICS[SCENARIOS[res["scenario"]]["kinetics"]]
     tt = np.geomspace(t0, t_last, 200)
     free = free_swelling(tt, res["scenario"], eps_inf, t0) * 1e6
@@ -492,7 +495,7 @@ def plot_unbalanced_overlay(path, runs, title):
         ends, at_end = _step_ends(res), np.asarray(res.get("unbalanced_ratio") or [], dtype=float)
         n = min(len(ends), len(at_end))
         ax.semilogy(ends[:n], at_end[:n], "o", ms=2.5, color=st["color"], label=None if full else f"{label}: step ends only")
-    if runs:
+    if runs and _tolerance(runs[0][1]):
         ax.axhline(_tolerance(runs[0][1]), color="k", lw=0.8, ls=":", label=f"tolerance {_tolerance(runs[0][1]):g}")
     ax.plot([], [], "o", ms=2.5, color="0.3", label="step ends")
     ax.set(xlabel="cumulative iterations [-]", ylabel="unbalanced-force ratio [-]", title=title)

@@ -70,8 +70,8 @@ class SwellingTest:
     solver: str = _field("implicit", "quasi-static solver: implicit (each step's exact equilibrium by Newton and a sparse Cholesky factor) "
                          "or adr (adaptive dynamic relaxation, the paper's method)", choices=tuple(SOLVERS))
     steps_per_decade: float = _field(10.0, "physical steps per decade of log time", sets="solver.stepsPerDecade")
-    tolerance: float = _field(0.0, "unbalanced-force ratio at which a step has converged (0: the solver's own, 1e-4 adr, 1e-10 implicit)",
-                              sets="solver.tolerance")
+    tolerance: float = _field(None, "unbalanced-force ratio at which a step has converged (absent: the solver's own default, "
+                                    "its class's tolerance)", type=float, sets="solver.tolerance")
     t_start_days: float = _field(1.0, "age of the stress-free start", unit="day", flag="--t-start", sets="solver.tStart")
     t_end_days: float = _field(0.0, "last time (0: the paper's, 3650 ISR / 50000 ASR)", unit="day", flag="--t-end", sets="solver.tEnd")
     temperature_c: float = _field(None, "constant temperature of every kind (none: each kind at its reference temperatures, "
@@ -103,6 +103,11 @@ class SwellingTest:
     rebar_young: float = _field(200e9, "steel modulus of the bars", unit="Pa")
     rebar_yield_stress: float = _field(500e6, "steel yield stress: the bars stay elastic, the first day they reach it is "
                                               "reported (results.json rebar.yield_day)", unit="Pa")
+    solver_params: dict = _field(None, "settings of the solver, NAME=VALUE (repeatable), e.g. fallbackIterations=3 or "
+                                       "stepsPerDecade=5: any setting of the chosen solver's class (AdrLogTimeIntegrator or "
+                                       "ImplicitLogTimeSolver, LogTimeSolver's included), VALUE a Python literal, checked by the "
+                                       "plugin; applied last (over --steps-per-decade, --tolerance, --t-start, --t-end)",
+                                 flag="--solver-param", sets="solver.<setting>", factory=dict)
     vtk_every: int = _field(0, "ParaView files (DIR/vtk/) every k physical steps, and always of the last (0: only the last)")
     out: str = _field("out/swelling", "output folder")
 
@@ -125,7 +130,8 @@ class SwellingTest:
             _bad("size_mm", self.size_mm, "two finite lengths > 0 [mm]")
         options.integer("seed", self.seed, lo=0)
         options.number("steps_per_decade", self.steps_per_decade, lo=0)
-        options.tolerance("tolerance", self.tolerance, zero_means_default=True, solver=self.solver)
+        if self.tolerance is not None:  # None: the solver's own, its class's default
+            options.tolerance("tolerance", self.tolerance, solver=self.solver)
         options.number("t_start_days", self.t_start_days, lo=0, unit="day")
         if not (options.is_number(self.t_end_days) and self.t_end_days == 0):
             options.number("t_end_days", self.t_end_days, lo=self.t_start_days, unit="day",
@@ -170,6 +176,12 @@ class SwellingTest:
                     options.number(f"{name}.{attr}", value)
                 elif isinstance(value, str) and value.strip().lower().lstrip("+-") in ("nan", "inf", "infinity"):
                     _bad(f"{name}.{attr}", value, "a finite number")
+        if not isinstance(self.solver_params, dict) or not all(isinstance(k, str) for k in self.solver_params):
+            _bad("solver_params", self.solver_params, "a dict {solver setting: value}")
+        # the names and the values are the plugin's to check (prepare(): the solver's class)
+        tol = self.solver_params.get("tolerance")
+        if options.is_number(tol) and 0 < tol < 1:
+            options.tolerance("solver_params tolerance", tol, solver=self.solver)  # the loose-tolerance warning
 
     def temperature_history(self):
         """(days [day], temperatures [K]) of temperature_c or temperature_csv, None without either;
@@ -256,6 +268,19 @@ def parse_kind_param(text):
     return kind.strip(), attr.strip(), value
 
 
+def parse_solver_param(text):
+    """'NAME=VALUE' -> (NAME, value); value a Python literal (5, 1e-6, True, [1.0, 2.0]) or else the
+    text itself (the plugin then refuses it if the setting takes no text)."""
+    name, eq, value = text.partition("=")
+    if not (eq and name.strip()):
+        _bad("solver_param", text, "NAME=VALUE, e.g. fallbackIterations=3")
+    try:
+        value = ast.literal_eval(value)
+    except (ValueError, SyntaxError):
+        pass
+    return name.strip(), value
+
+
 def add_arguments(parser):
     """Adds one command-line option per SwellingTest field to an argparse parser."""
     for f in fields(SwellingTest):
@@ -274,7 +299,8 @@ def add_arguments(parser):
             parser.add_argument(flag, dest=f.name, type=type(default[0]), nargs=len(default), default=default,
                                 metavar=("W", "H") if f.name == "size_mm" else None, help=help_text + f" (default {default})")
         elif isinstance(default, dict):
-            parser.add_argument(flag, dest=f.name, action="append", default=[], metavar="KIND.ATTR=VALUE", help=help_text)
+            parser.add_argument(flag, dest=f.name, action="append", default=[],
+                                metavar="KIND.ATTR=VALUE" if f.name == "kind_params" else "NAME=VALUE", help=help_text)
         else:
             parser.add_argument(flag, dest=f.name, type=m["type"] or type(default), default=default, choices=m["choices"],
                                 help=help_text + f" (default {default})")
@@ -289,7 +315,8 @@ def add_solver_argument(parser, default=None):
 
 
 def from_arguments(ns):
-    """The SwellingTest of parsed arguments (see add_arguments); ValueError for a malformed --kind-param."""
+    """The SwellingTest of parsed arguments (see add_arguments); ValueError for a malformed --kind-param
+    or --solver-param."""
     kw = {f.name: getattr(ns, f.name) for f in fields(SwellingTest)}
     kw["size_mm"] = tuple(kw["size_mm"])
     params = {}
@@ -297,6 +324,7 @@ def from_arguments(ns):
         kind, attr, value = parse_kind_param(text)
         params.setdefault(kind, {})[attr] = value
     kw["kind_params"] = params
+    kw["solver_params"] = dict(parse_solver_param(text) for text in kw["solver_params"])
     return SwellingTest(**kw)
 
 
@@ -493,7 +521,6 @@ def prepare(test, extra_times=()):
     extra_times [day]: further physical times the solver stops at (its extraTimes), e.g. the ages
     of virtual tests."""
     test.validate()
-    dem = _dem()
     try:
         kinds = make_kinds(test)
     except TypeError as e:  # e.g. MORTAR.tensileStrength=abc: boost.python cannot make a double of it
@@ -502,12 +529,109 @@ def prepare(test, extra_times=()):
             (name, value), = text.items()
             _bad(name, value, f"a value of the attribute's type: a number, True/False or a name ({e})")
         _bad("kind_params", test.kind_params, f"values of each attribute's type: a number, True/False or a name ({e})")
+    return kinds, make_solver(test, extra_times)
+
+
+def make_solver(test, extra_times=()):
+    """The solver of a test: its class (test.solver) with the test's schedule (t_start_days, t_end,
+    steps_per_decade), its tolerance when given, extra_times [day] as extraTimes, and last the
+    test's solver_params, all passed to the constructor, which validates every value; a setting the
+    test leaves out keeps the class's default (the one place defaults are stated). ValueError in the
+    one message form for a name that is not a setting of that solver (listing the allowed ones) or a
+    value of the wrong type."""
+    dem = _dem()
+    dem.check_solver_settings(test.solver, list(test.solver_params))
     settings = dict(tStart=test.t_start_days, tEnd=test.t_end, stepsPerDecade=test.steps_per_decade, label="swelldemSolver")
     if len(extra_times):
         settings["extraTimes"] = sorted(float(t) for t in extra_times)
-    if test.tolerance:  # 0 keeps the solver's own: the ADR's is an accuracy setting, the implicit solver's is round-off
+    if test.tolerance is not None:
         settings["tolerance"] = test.tolerance
-    return kinds, dem.make_solver(test.solver, **settings)
+    settings.update(test.solver_params)
+    try:
+        return dem.make_solver(test.solver, **settings)
+    except TypeError as e:  # e.g. fallbackIterations=abc: boost.python cannot make a number of it
+        why = " ".join(str(e).split())
+        text = ", ".join(f"{k}={v!r}" for k, v in test.solver_params.items())
+        _bad("solver_params", text or settings, f"values of each setting's type: a number, True/False, a list or a name ({why})")
+
+
+def make_assembly(test):
+    """The mesostructure of a test (swelldem.meso.generate of its size, seed and aggregate
+    fraction), with the discs its bars replace carved out; plain Python."""
+    from . import meso
+    overrides = {} if test.aggregate_area_fraction < 0 else {"aggregate_area_fraction": test.aggregate_area_fraction}
+    print(f"swelldem: set-up: mesostructure {test.size_mm[0]:g} x {test.size_mm[1]:g} mm, seed {test.seed}", flush=True)
+    assembly = meso.generate(seed=test.seed, width_mm=test.size_mm[0], height_mm=test.size_mm[1], **overrides)
+    lay = test.rebar_layout()  # checked by validate(), before any work
+    if lay is not None:
+        from .dem import rebar
+        assembly = rebar.carve(assembly, lay)  # the discs the bar replaces
+    return assembly
+
+
+@dataclass
+class Built:
+    """A swelling test built as a YADE scene (build()): what run() records and a benchmark times."""
+    test: SwellingTest
+    kinds: dict  # name -> ContactKind, as run (macro scaling and swellDispInf applied)
+    solver: object  # the LogTimeSolver, last engine of O.engines (label 'swelldemSolver')
+    assembly: object  # swelldem.meso.Assembly (bars carved out)
+    scene: object  # swelldem.dem.YadeScene
+    d_inf: float  # [m] swelling displacement at infinity of the swelling kinds
+    r_mean: float  # [m] mean disc radius
+    calibration: dict  # the macro calibration's record, or why none was run
+    gel: list = field(default_factory=list)  # asr-coarse: the gel-pocket contacts
+    bars: object = None  # swelldem.dem.rebar's bars, or None
+    platens: object = None  # swelldem.dem.platens' platens
+    layout: object = None  # the bars' RebarLayout, or None
+
+    @property
+    def solver_settings(self):
+        """{setting: value} of the solver as it runs (every setting of its class)."""
+        return _dem().solver_settings(self.solver)
+
+
+def build(test, prepared=None, extra_times=(), assembly=None, reset=True, t0=None):
+    """The one way a swelling test becomes a YADE scene, for run() and the benchmarks: prepare()
+    (unless `prepared`, its result, is given), the mesostructure (make_assembly(), unless
+    `assembly` is given), in macro the modulus calibration and the kinds' scaling, the swelling
+    kinds' d_inf, the scene (dem.to_yade: O.reset, discs, engines with the solver last, bonded
+    contacts), the gel pockets, the bars and the platens. Writes nothing. reset=False builds into
+    the current scene, which must be empty (e.g. one made by O.addScene). Returns a Built; the
+    solver has not run yet (dem.run_to_end(built.solver), or O.run). t0: the time.time() the
+    set-up line counts from (default now)."""
+    kinds, solver = prepared or prepare(test, extra_times)
+    dem = _dem()
+    t0 = time.time() if t0 is None else t0
+    if assembly is None:
+        assembly = make_assembly(test)
+    lay = test.rebar_layout()
+    if test.parameters == "macro":
+        print("swelldem: set-up: calibrating the contact moduli (parameters = macro)", flush=True)
+        cal = calibrate_modulus_factor(shear_ratio=test.shear_ratio)
+        scale_kinds(kinds, cal["beta"], test.kind_params)
+        # the specimen's moduli the contact values imply: beta x E_c (E_c = 1/J(28.01, 28) for mortar and ITZ)
+        cal["macro_young_28d_Pa"] = {name: cal["beta"] / kinds[name].compliance(28.01, 28.0) for name in ("MORTAR", "ITZ")}
+        cal["macro_young_28d_Pa"]["AGG"] = cal["beta"] * kinds["AGG"].young
+    else:
+        cal = {"run": False, "why": "parameters = paper-micro: the paper's values are contact values, beta is not needed"}
+    r_mean = float(assembly.r.mean())
+    d_inf = test.eps_inf * 2 * r_mean  # the paper's micro-macro rule (Table 3.2)
+    set_swelling(test, kinds, d_inf)
+    ys = dem.to_yade(assembly, kinds, solver, reset=reset)
+    print(f"swelldem: set-up: {len(assembly.x)} discs, {len(ys.contacts)} bonded contacts, "
+          f"{time.time() - t0:.1f} s", flush=True)
+    gel = []
+    if test.scenario == "asr-coarse":
+        gel = dem.set_gel_pockets(ys, assembly, test.gel_fraction, d_inf, test.seed)
+    bars = None
+    if lay is not None:
+        from .dem import rebar
+        bars = rebar.add_bars(assembly, ys, lay, kinds["ITZ"])
+    from .dem.platens import Boundary, add_platens
+    platens = add_platens(assembly, ys, Boundary.parse("boundary_x", test.boundary_x), Boundary.parse("boundary_y", test.boundary_y))
+    return Built(test=test, kinds=kinds, solver=solver, assembly=assembly, scene=ys, d_inf=d_inf, r_mean=r_mean, calibration=cal,
+                 gel=gel, bars=bars, platens=platens, layout=lay)
 
 
 def run_or_exit(test, prog, prepared=None, **kw):
@@ -576,46 +700,19 @@ def run(test, prepared=None, extra_times=(), after_step=None):
     extra_times [day]: see prepare(); after_step: a callable run without arguments after the
     recorder at every converged step (e.g. saving the scene at a test age, swelldem.residual)."""
     kinds, solver = prepared or prepare(test, extra_times)
-    dem = _dem()
-    from . import meso, report
+    from . import report
     from .dem import recorder
     from .dem import scene as dem_scene
     t0 = time.time()
     os.makedirs(test.out, exist_ok=True)
-    overrides = {} if test.aggregate_area_fraction < 0 else {"aggregate_area_fraction": test.aggregate_area_fraction}
-    print(f"swelldem: set-up: mesostructure {test.size_mm[0]:g} x {test.size_mm[1]:g} mm, seed {test.seed}", flush=True)
-    assembly = meso.generate(seed=test.seed, width_mm=test.size_mm[0], height_mm=test.size_mm[1], **overrides)
-    lay = test.rebar_layout()  # checked by validate(), before any work
-    if lay is not None:
-        from .dem import rebar
-        assembly = rebar.carve(assembly, lay)  # the discs the bar replaces
+    assembly = make_assembly(test)
     assembly.save(os.path.join(test.out, "assembly.npz"))
-    if test.parameters == "macro":
-        print("swelldem: set-up: calibrating the contact moduli (parameters = macro)", flush=True)
-        cal = calibrate_modulus_factor(shear_ratio=test.shear_ratio)
-        scale_kinds(kinds, cal["beta"], test.kind_params)
-        # the specimen's moduli the contact values imply: beta x E_c (E_c = 1/J(28.01, 28) for mortar and ITZ)
-        cal["macro_young_28d_Pa"] = {name: cal["beta"] / kinds[name].compliance(28.01, 28.0) for name in ("MORTAR", "ITZ")}
-        cal["macro_young_28d_Pa"]["AGG"] = cal["beta"] * kinds["AGG"].young
-    else:
-        cal = {"run": False, "why": "parameters = paper-micro: the paper's values are contact values, beta is not needed"}
-    r_mean = float(assembly.r.mean())
-    d_inf = test.eps_inf * 2 * r_mean  # the paper's micro-macro rule (Table 3.2)
-    set_swelling(test, kinds, d_inf)
-    ys = dem.to_yade(assembly, kinds, solver)
-    print(f"swelldem: set-up: {len(assembly.x)} discs, {len(ys.contacts)} bonded contacts, "
-          f"{time.time() - t0:.1f} s", flush=True)
-    gel = []
-    if test.scenario == "asr-coarse":
-        gel = dem.set_gel_pockets(ys, assembly, test.gel_fraction, d_inf, test.seed)
-    bars = None
-    if lay is not None:
-        from .dem import rebar
-        bars = rebar.add_bars(assembly, ys, lay, kinds["ITZ"])
-    from .dem.platens import Boundary, add_platens
-    platens = add_platens(assembly, ys, Boundary.parse("boundary_x", test.boundary_x), Boundary.parse("boundary_y", test.boundary_y))
+    built = build(test, (kinds, solver), assembly=assembly, t0=t0)
+    ys, cal, gel, bars, platens, lay, d_inf = built.scene, built.calibration, built.gel, built.bars, built.platens, built.layout, built.d_inf
+    r_mean = built.r_mean
     counts = {name: int((assembly.kind == k).sum()) for k, name in enumerate(paper.KIND_NAMES)}
     res = {"scenario": test.scenario, "behaviour": test.behaviour, "damage": test.damage, "solver": test.solver, "tolerance": solver.tolerance, "config": asdict(test),
+           "solver_settings": built.solver_settings,
            "calibration": cal, "d_inf_m": d_inf, "r_mean_m": r_mean, "n_particles": int(len(assembly.x)),
            "n_contacts_by_kind": counts, "n_gel_pockets": int(len(gel)), "times_days": [], "swelling_strain_x": [],
            "swelling_strain_y": [], "swelling_strain_area": [], "platen_stress_x_Pa": [], "platen_stress_y_Pa": [],

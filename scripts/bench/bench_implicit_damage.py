@@ -1,11 +1,12 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 """One swelling test with damage on under either log-time solver and either break rule, built
-from the scenarios' pieces (scenario.make_kinds, dem.make_solver, dem.to_yade), with nothing but
-the run timed and the broken shares counted over the contacts bonded at the start:
+as the scenarios build it (swelldem.scenario.build), with nothing but the run timed and the broken
+shares counted over the contacts bonded at the start:
 
     scripts/yade-swelldem -j 1 -n -x scripts/bench/bench_implicit_damage.py --scenario isr \\
-        --behaviour elastic --size-mm 40 40 --seed 1 --solver implicit [--tolerance 0] \\
-        [--break-rule all|one] [--steps-per-decade 10] [--parameters paper-micro] [--out DIR]
+        --behaviour elastic --size-mm 40 40 --seed 1 --solver implicit [--tolerance TOL] \\
+        [--break-rule all|one] [--steps-per-decade 10] [--parameters paper-micro] \\
+        [--solver-param lowRankChanges=0 ...] [--out DIR]
 
 Prints one line `RESULT {json}`: status ('finished' or 'failed: <message>'), iterations, wall
 time of the run [s] (set-up excluded), the final swelling strains, and the broken share [%] of the
@@ -13,7 +14,6 @@ contacts of each kind that were bonded at the start. docs/performance.md section
 docs/contact-law-and-solver.md (break rule) quote its figures.
 """
 import argparse
-import ast
 import json
 import os
 import sys
@@ -24,7 +24,7 @@ REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 sys.path.insert(0, os.path.join(REPO, "py"))
 import numpy as np  # noqa: E402
 
-from swelldem import dem, meso, options, paper, scenario  # noqa: E402
+from swelldem import dem, options, paper, scenario  # noqa: E402
 from swelldem.dem import recorder  # noqa: E402
 from swelldem.measure import affine_strain  # noqa: E402
 
@@ -36,40 +36,27 @@ def main(argv):
     ap.add_argument("--size-mm", type=float, nargs=2, default=[20.0, 20.0])
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--solver", choices=["adr", "implicit"], default="implicit")
-    ap.add_argument("--tolerance", type=float, default=0.0, help="0: the solver's own")
+    ap.add_argument("--tolerance", type=float, default=None, help="absent: the solver's own default")
     ap.add_argument("--break-rule", choices=["all", "one"], default="all",
                     help="all overloaded contacts at once, or the most overloaded first (breakOneAtATime)")
     ap.add_argument("--steps-per-decade", type=float, default=10.0)
     ap.add_argument("--parameters", choices=["paper-micro", "macro"], default="paper-micro")
     ap.add_argument("--verbose", action="store_true", help="print the solver's progress line per step")
     ap.add_argument("--out", default="", help="also write the result as JSON into this folder (result.json)")
-    ap.add_argument("--set", action="append", default=[], metavar="ATTR=VALUE",
-                    help="a setting of the solver, e.g. lowRankChanges=0 (a Python literal; repeatable)")
+    ap.add_argument("--solver-param", action="append", default=[], metavar="NAME=VALUE",
+                    help="a setting of the solver, e.g. lowRankChanges=0 (a Python literal; repeatable), as swelling_test.py's")
     a = ap.parse_args(argv)
     with options.refuse_bad("bench_implicit_damage.py"):
-        test = scenario.SwellingTest(scenario=a.scenario, behaviour=a.behaviour, damage=True, size_mm=list(a.size_mm),
+        params = dict(scenario.parse_solver_param(text) for text in a.solver_param)
+        params = {"verbose": a.verbose, "breakOneAtATime": a.break_rule == "one", **params}
+        test = scenario.SwellingTest(scenario=a.scenario, behaviour=a.behaviour, damage=True, size_mm=tuple(a.size_mm),
                                      seed=a.seed, parameters=a.parameters, steps_per_decade=a.steps_per_decade,
-                                     tolerance=a.tolerance, solver=a.solver,
+                                     tolerance=a.tolerance, solver=a.solver, solver_params=params,
                                      # the test's own folder is not written (only --out's result.json)
                                      out=a.out or tempfile.gettempdir())
-        test.validate()
-        kinds = scenario.make_kinds(test)
-        settings = dict(tStart=test.t_start_days, tEnd=test.t_end, stepsPerDecade=test.steps_per_decade, verbose=a.verbose,
-                        breakOneAtATime=a.break_rule == "one")
-        if a.tolerance:
-            settings["tolerance"] = a.tolerance
-        for item in a.set:
-            name, _, value = item.partition("=")
-            try:
-                settings[name] = ast.literal_eval(value)
-            except (ValueError, SyntaxError):
-                options.bad("set", item, "ATTR=VALUE with VALUE a Python literal")
-        solver = dem.make_solver(a.solver, **settings)
-    assembly = meso.generate(seed=test.seed, width_mm=test.size_mm[0], height_mm=test.size_mm[1])
-    if test.parameters == "macro":
-        scenario.scale_kinds(kinds, scenario.calibrate_modulus_factor(shear_ratio=test.shear_ratio)["beta"], test.kind_params)
-    scenario.set_swelling(test, kinds, test.eps_inf * 2 * float(assembly.r.mean()))
-    ys = dem.to_yade(assembly, kinds, solver)
+        prepared = scenario.prepare(test)
+    built = scenario.build(test, prepared)
+    solver, ys, assembly = built.solver, built.scene, built.assembly
     bonded = recorder.bonded_pairs()
     kind0, _, _, _ = recorder.contact_arrays(bonded)
     t0, status = time.time(), "finished"
@@ -88,7 +75,7 @@ def main(argv):
     result = {
         "scenario": a.scenario, "behaviour": a.behaviour, "size_mm": list(a.size_mm), "seed": a.seed, "solver": a.solver,
         "break_rule": a.break_rule, "status": status, "iterations": solver.totalIterations, "wall_s": round(wall, 2),
-        "factorizations": getattr(solver, "factorizations", None), "settings": dict(item.split("=", 1) for item in a.set),
+        "factorizations": getattr(solver, "factorizations", None), "settings": dict(item.split("=", 1) for item in a.solver_param),
         "strain_x": float(strain["eps_xx"]), "strain_y": float(strain["eps_yy"]), "broken_pct": pct}
     print("RESULT " + json.dumps(result), flush=True)
     if a.out:

@@ -13,8 +13,8 @@ benchmark, not a timed test.
 One YADE process (-j 1) per (size, repeat) holds one scene per numbering (O.addScene; the order in
 which they are built rotates with the repeat, since the heap's history differs), each the
 swelling test's (ISR, seed 1, paper-micro parameters; elastic contacts and damage off by default, as in
-issue 13; ADR at 10 steps a decade, tolerance 1e-4, collider every 20 iterations), built by
-swelldem.dem.to_yade as scripts/bench/bench_scaling.py builds it, then run for 21 iterations (set-up,
+issue 13; ADR at 10 steps a decade, its default tolerance, collider every 20 iterations), built by
+swelldem.scenario.build as scripts/bench/bench_scaling.py builds it, then run for 21 iterations (set-up,
 warm-up). The scenes then take turns (--rounds rounds, the order of turns reversed every round), each
 turn a window of about 1.5e6 / discs ADR iterations of physical step 1, so that the numberings see the
 same drift of a shared machine. Time: the process's CPU time (time.process_time, not disturbed by other
@@ -72,12 +72,13 @@ def locality(a):
 
 # ------------------------------------------------------------------------------------------ worker
 def worker(a):
+    import tempfile
     import yade
-    from swelldem import dem, meso, scenario
-    W = yade.wrapper
+    from swelldem import meso, scenario
     O = yade.Omega()
+    # the swelling test's scene and solver (scenario.build; nothing is written: out is only checked)
     test = scenario.SwellingTest(scenario="isr", behaviour=a.behaviour, damage=a.damage, size_mm=(a.size_mm, a.size_mm),
-                                 seed=a.seed, out="/dev/null")
+                                 seed=a.seed, solver="adr", solver_params={"verbose": False}, out=tempfile.gettempdir())
     base = meso.generate(seed=test.seed, width_mm=a.size_mm, height_mm=a.size_mm, order="packing")
     out = {"size_mm": a.size_mm, "n_particles": base.n_particles, "n_contacts": base.n_contacts, "load_start": os.getloadavg(),
            "orders": {}}
@@ -89,13 +90,10 @@ def worker(a):
             asm = renumbered(base, random_permutation(base.n_particles))
         else:
             asm = base if order == "packing" else meso.generate(seed=test.seed, width_mm=a.size_mm, height_mm=a.size_mm, order=order)
-        kinds = scenario.make_kinds(test)  # one set a scene: kinds hold step state
-        scenario.set_swelling(test, kinds, test.eps_inf * 2 * float(base.r.mean()))
         k = O.addScene()
         O.switchToScene(k)
-        solvers[order] = W.AdrLogTimeIntegrator(tStart=test.t_start_days, tEnd=test.t_end, stepsPerDecade=test.steps_per_decade,
-                                                tolerance=test.tolerance or 1e-4, label="swelldemSolver", verbose=False)
-        dem.to_yade(asm, kinds, solvers[order], reset=False)
+        # one set of kinds and one solver a scene (build() prepares them anew): kinds hold step state
+        solvers[order] = scenario.build(test, assembly=asm, reset=False).solver
         O.run(21, True)  # set-up and warm-up (the collider's first runs)
         scenes[order] = k
         out["orders"][order] = dict(locality(asm), turns=[])

@@ -10,8 +10,8 @@ timed test.
 One YADE process per (size, threads): scripts/yade-swelldem -n -j T -x this --worker ... The scene is
 the swelling test's (swelldem.scenario: mesostructure of seed 1, ISR, viscoelastic contacts, damage
 on unless --no-damage, paper-micro parameters, AdrLogTimeIntegrator at 10 steps a decade and
-tolerance 1e-4, collider every 20 iterations), built as scenario.run builds it but without the
-per-step recording. Measured:
+its default tolerance, collider every 20 iterations), built by swelldem.scenario.build as
+scenario.run builds it, without the per-step recording. Measured:
 - per iteration: the first --iters ADR iterations of physical step 1 with O.timingEnabled (engine
   execTime / iterations; 'wall' = O.run's wall time / iterations, which includes YADE's loop);
 - ADR iterations of each of the first --steps physical steps (run to convergence after the timed
@@ -45,22 +45,21 @@ def vm(field="VmHWM"):
 
 # ------------------------------------------------------------------------------------------ worker
 def worker(a):
+    import tempfile
     import yade
-    from swelldem import dem, meso, scenario
+    from swelldem import scenario
     O = yade.Omega()
     out = {"size_mm": a.size_mm, "threads": O.numThreads, "damage": not a.no_damage, "load_start": os.getloadavg()}
     t0 = time.time()
+    # the swelling test's scene and solver, as scenario.run builds them (nothing is written: out is only checked)
     test = scenario.SwellingTest(scenario="isr", behaviour=a.behaviour, damage=not a.no_damage, size_mm=(a.size_mm, a.size_mm), seed=a.seed,
-                                 solver="adr", out="/dev/null")
-    assembly = meso.generate(seed=test.seed, width_mm=a.size_mm, height_mm=a.size_mm)
+                                 solver="adr", solver_params={"verbose": False}, out=tempfile.gettempdir())
+    prepared = scenario.prepare(test)
+    assembly = scenario.make_assembly(test)
     out["generate_s"] = time.time() - t0
     out["mem_after_generate_MB"] = vm()
-    kinds = scenario.make_kinds(test)
-    scenario.set_swelling(test, kinds, test.eps_inf * 2 * float(assembly.r.mean()))
-    solver = dem.make_solver(test.solver, tStart=test.t_start_days, tEnd=test.t_end, stepsPerDecade=test.steps_per_decade,
-                             tolerance=test.tolerance, label="swelldemSolver", verbose=False)
     t1 = time.time()
-    dem.to_yade(assembly, kinds, solver)
+    solver = scenario.build(test, prepared, assembly=assembly).solver
     out["build_s"] = time.time() - t1
     out["mem_after_build_MB"] = vm()
     out["n_particles"] = len(O.bodies)

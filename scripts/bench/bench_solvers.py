@@ -36,7 +36,7 @@ def run_one(out, size, scenario, behaviour, damage, solver, tolerance, threads, 
            "--size-mm", str(size), str(size), "--seed", str(seed), "--solver", solver, "--out", out]
     if not damage:
         cmd.append("--no-damage")
-    if tolerance:
+    if tolerance is not None:  # else the solver's own default
         cmd += ["--tolerance", str(tolerance)]
     t0 = time.time()
     with open(os.path.join(out, "log.txt"), "w") as log:
@@ -108,7 +108,7 @@ def main():
     ap.add_argument("--scenarios", nargs="+", default=["isr"])
     ap.add_argument("--behaviours", nargs="+", default=["viscoelastic"])
     ap.add_argument("--damage", action="store_true", help="damage on (default off)")
-    ap.add_argument("--adr-tolerance", type=float, default=0.0, help="ADR tolerance (0: its default 1e-4)")
+    ap.add_argument("--adr-tolerance", type=float, default=None, help="ADR tolerance (absent: AdrLogTimeIntegrator's default)")
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--out", default=os.path.join(REPO, "out", "bench", "solvers"))
@@ -116,7 +116,8 @@ def main():
         a = ap.parse_args()
         options.output_folder("out", a.out)
         # a benchmark may measure a loose tolerance on purpose: range checked, no warning
-        options.tolerance("adr_tolerance", a.adr_tolerance, zero_means_default=True, useful_max=1.0)
+        if a.adr_tolerance is not None:
+            options.tolerance("adr_tolerance", a.adr_tolerance, useful_max=1.0)
         options.numbers("sizes_mm", a.sizes_mm, lo=0, unit="mm")
         for sc in a.scenarios:
             options.choice("scenarios", sc, tuple(paper.SCENARIOS))
@@ -130,7 +131,7 @@ def main():
             for be in a.behaviours:
                 tag = f"{size:g}-{sc}-{be}-{'dmg' if a.damage else 'nodmg'}"
                 r = {}
-                for solver, tol in (("implicit", 0.0), ("adr", a.adr_tolerance)):
+                for solver, tol in (("implicit", None), ("adr", a.adr_tolerance)):
                     r[solver] = run_one(os.path.join(a.out, f"{tag}-{solver}"), size, sc, be, a.damage, solver, tol, a.threads, a.seed)
                 row = {"case": tag, "adr": r["adr"], "implicit": r["implicit"]}
                 if r["adr"]["strain"] and r["implicit"]["strain"]:

@@ -49,7 +49,6 @@ def test_a_loose_tolerance_warns_on_stderr(capsys):
     assert options.tolerance("tolerance", 0.9) == 0.9
     err = capsys.readouterr().err
     assert "swelldem: warning: tolerance = 0.9 is looser than the useful range (<= 0.001" in err and "docs/performance.md" in err
-    assert options.tolerance("tolerance", 0, zero_means_default=True) == 0.0
     for bad in (0, 1, math.nan, math.inf):
         with pytest.raises(options.OptionError, match="tolerance = .* is out of range; allowed: 0 < tolerance < 1"):
             options.tolerance("tolerance", bad)

@@ -171,7 +171,7 @@ def test_macro_parameters_run_the_calibration(tmp_path):
 
 @pytest.mark.parametrize("args,needle", [
     (("--steps-per-decade", "0"), "steps_per_decade = 0.0 is out of range; allowed: 0 < steps_per_decade < inf"),
-    (("--tolerance", "2"), "tolerance = 2.0 is out of range; allowed: 0 (the solver's own) or 0 < tolerance < 1"),
+    (("--tolerance", "2"), "tolerance = 2.0 is out of range; allowed: 0 < tolerance < 1"),
     (("--t-end", "0.5"), "t_end_days = 0.5 is out of range; allowed: 0 (the paper's end) or t_start_days = 1 < t_end_days"),
     (("--shear-ratio", "nan"), "shear_ratio = nan is out of range; allowed:"),
     (("--eps-inf", "nan"), "eps_inf = nan is out of range; allowed: 0 <= eps_inf < inf"),

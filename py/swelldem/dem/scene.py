@@ -76,11 +76,9 @@ def check_kind_attributes(attrs, where):
             raise ValueError(f"swelldem: {where} attribute = {a!r} is out of range; allowed: {', '.join(known)}")
 
 
-def make_solver(name, **settings):
-    """The quasi-static engine `name` (a SOLVERS key) with `settings` by their plugin names
-    (tStart, tEnd [day], stepsPerDecade, tolerance, verbose, label, ...); its constructor validates
-    them. ValueError before anything is built when the name is unknown or its class is not in the
-    loaded plugin."""
+def _solver_class(name):
+    """The plugin class of solver `name` (a SOLVERS key); ValueError when the name is unknown or its
+    class is not in the loaded plugin."""
     if name not in SOLVERS:
         raise ValueError(f"swelldem: solver = {name!r} is out of range; allowed: {', '.join(SOLVERS)}")
     _, W = _yade()
@@ -89,7 +87,59 @@ def make_solver(name, **settings):
         have = ", ".join(n for n, c in SOLVERS.items() if hasattr(W, c))
         raise ValueError(f"swelldem: solver = {name!r} is out of range; allowed: {have} "
                          f"(this build of the plugin has no {SOLVERS[name]})")
-    return cls(**settings)
+    return cls
+
+
+def solver_setting_names(name):
+    """The settings of solver `name` (a SOLVERS key): the attributes its plugin class and
+    LogTimeSolver flag swelldem_attr::Setting, i.e. those that Python may write and that the
+    object's dict() shows (results are read-only, internals not shown; YADE's own Engine
+    attributes, such as label, are not the solver's settings). Sorted."""
+    cls = _solver_class(name)
+    _, W = _yade()
+    own = set()
+    for c in cls.__mro__:
+        if c is W.GlobalEngine:
+            break
+        own |= {k for k, v in vars(c).items() if isinstance(v, property) and v.fset is not None}
+    return sorted(own & set(cls().dict()))
+
+
+def solver_defaults(name):
+    """{setting: default} of solver `name`, read from a fresh object of its plugin class: the one
+    place the defaults are stated is the C++ class (e.g. tolerance 1e-4 for adr, 1e-10 for implicit)."""
+    return solver_settings(_solver_class(name)())
+
+
+def solver_settings(solver):
+    """{setting: value} of a solver object, as it runs (lists for the plugin's vectors): what
+    results.json records as solver_settings."""
+    name = next(n for n, c in SOLVERS.items() if type(solver).__name__ == c)
+    return {k: (list(v) if not isinstance(v, (str, bytes)) and hasattr(v, "__len__") else v)
+            for k, v in ((k, getattr(solver, k)) for k in solver_setting_names(name))}
+
+
+def check_solver_settings(name, attrs, where="solver_params"):
+    """ValueError in the one message form naming the first of `attrs` (names) that is not a setting
+    of solver `name` (unknown, a result, or a setting of the other solver only), with the allowed
+    names."""
+    if not attrs:
+        return
+    known = solver_setting_names(name)
+    for a in attrs:
+        if a not in known:
+            raise ValueError(f"swelldem: {where} name = {a!r} is not a setting of the {name} solver ({SOLVERS[name]}); "
+                             f"allowed: {', '.join(known)}")
+
+
+def make_solver(name, **settings):
+    """The quasi-static engine `name` (a SOLVERS key) with `settings` by their plugin names
+    (tStart, tEnd [day], stepsPerDecade, tolerance, verbose, ... and YADE's label); its constructor
+    validates their values. ValueError before anything is built when the name is unknown, its class
+    is not in the loaded plugin, or a setting is not one of its settings (check_solver_settings)."""
+    cls = _solver_class(name)
+    check_solver_settings(name, [k for k in settings if k != "label"], where="solver setting")
+    return cls(**{k: _plain(v) for k, v in settings.items()})
 
 
 def disc(center_xy, radius, material, fixed=False):
