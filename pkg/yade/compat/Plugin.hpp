@@ -86,9 +86,15 @@ namespace swelldem_py {
 	template <class T> void afterLoad(T& t) { afterLoadImpl(t, 0); }
 	template <class T> struct IsVector : std::false_type { };
 	template <class E, class A> struct IsVector<std::vector<E, A>> : std::true_type { };
+	template <class T> struct IsObject : std::false_type { };
+	template <class E> struct IsObject<shared_ptr<E>> : std::true_type {
+		using Element = E;
+	};
 	template <class T> std::string shown(const T& v)
 	{
-		if constexpr (std::is_arithmetic_v<T> || std::is_same_v<T, std::string>) {
+		if constexpr (IsObject<T>::value) {
+			return v ? v->getClassName() : std::string("None");
+		} else if constexpr (std::is_arithmetic_v<T> || std::is_same_v<T, std::string>) {
 			std::ostringstream s;
 			s << v;
 			return s.str();
@@ -118,6 +124,40 @@ namespace swelldem_py {
 			throw;
 		}
 	}
+	// An object attribute (a shared_ptr, e.g. a ContactKind) takes any Python value: boost.python's own
+	// conversion would refuse another type with a bare signature mismatch, and its pySetAttr path
+	// (constructor keywords, updateAttrs) would keep a refused value. Here a value of another type is
+	// refused in the plugin's form, None reaches postLoad (which decides whether the attribute may be
+	// empty), and a value postLoad refuses is not kept, whichever path set it.
+	template <class C, class E> void setObject(C& self, const char* name, shared_ptr<E>& member, const boost::python::object& value)
+	{
+		shared_ptr<E> v;
+		if (!value.is_none()) {
+			boost::python::extract<shared_ptr<E>> x(value);
+			if (!x.check()) {
+				const std::string given = boost::python::extract<std::string>(boost::python::str(value.attr("__repr__")()));
+				throw std::invalid_argument("swelldem: " + self.getClassName() + "." + name + " = " + given + " is out of range; allowed: a "
+				                            + E().getClassName() + " object");
+			}
+			v = x();
+		}
+		setChecked(self, name, member, v);
+	}
+	// pySetAttr: values as boost.python converts them (validated by the postLoad after all are set),
+	// objects as above.
+	template <class C, class T> void setAttr(C&, const char*, T& member, const boost::python::object& value) { member = boost::python::extract<T>(value); }
+	template <class C, class E> void setAttr(C& self, const char* name, shared_ptr<E>& member, const boost::python::object& value)
+	{
+		setObject(self, name, member, value);
+	}
+	// What a Python setter of an attribute of type T takes: the value itself, or any object for objects.
+	template <class T> using PyValue = std::conditional_t<IsObject<T>::value, boost::python::object, T>;
+	template <class C, class T> void setFromPython(C& self, const char* name, T& member, const PyValue<T>& value)
+	{
+		if constexpr (IsObject<T>::value) setObject(self, name, member, value);
+		else
+			setChecked(self, name, member, value);
+	}
 }
 }
 #define SWELLDEM_ATTR_MEMBER(type, name, def, flags, doc) type name = def;
@@ -127,7 +167,7 @@ namespace swelldem_py {
 	if (key == #name) {                                                                                                                                    \
 		if ((flags) & (swelldem_attr::Result | swelldem_attr::Internal))                                                                               \
 			throw std::invalid_argument(getClassName() + "." #name " is a result, not a setting: it cannot be set");                            \
-		name = boost::python::extract<type>(value);                                                                                                    \
+		swelldem_py::setAttr(*this, #name, name, value);                                                                                               \
 		return;                                                                                                                                        \
 	}
 #define SWELLDEM_ATTR_GET(type, name, def, flags, doc)                                                                                                         \
@@ -137,7 +177,9 @@ namespace swelldem_py {
 		auto getter = boost::python::make_getter(&ThisClass::name, boost::python::return_value_policy<boost::python::return_by_value>());             \
 		if ((flags)&swelldem_attr::Result) cls.add_property(#name, getter, "(result, read-only) " doc);                                                \
 		else                                                                                                                                           \
-			cls.add_property(#name, getter, +[](ThisClass& self, const type& v) { swelldem_py::setChecked(self, #name, self.name, v); }, doc);          \
+			cls.add_property(                                                                                                                      \
+			        #name, getter,                                                                                                                 \
+			        +[](ThisClass& self, const swelldem_py::PyValue<type>& v) { swelldem_py::setFromPython(self, #name, self.name, v); }, doc);  \
 	}
 // A table of parameters stored in a plain struct member `table` (the physics core's own struct):
 // #define TABLE(X) X(type, name, member path in the struct, default, "doc [unit]"); all are settings.
