@@ -58,4 +58,16 @@ __attribute__((constructor)) static void announceSwelldemClasses()
 }
 } // namespace yade
 
+// The plugin's version as each class's Boost class version (compat/Plugin.hpp, requireSceneVersion).
+// Written out instead of BOOST_CLASS_VERSION, whose 8-bit limit dates from archive formats older than
+// YADE's (Boost 1.74 stores a class version in 32 bits). Only this file instantiates the serializers.
+#define SWELLDEM_SCENE_VERSION_OF(C)                                                                                                                           \
+	template <> struct boost::serialization::version<yade::C> {                                                                                          \
+		typedef mpl::int_<SWELLDEM_SCENE_VERSION> type;                                                                                                \
+		typedef mpl::integral_c_tag                tag;                                                                                                \
+		BOOST_STATIC_CONSTANT(int, value = type::value);                                                                                               \
+	};
+SWELLDEM_PLUGIN_CLASSES(SWELLDEM_SCENE_VERSION_OF)
+#undef SWELLDEM_SCENE_VERSION_OF
+
 SWELLDEM_PLUGIN_CLASSES(SWELLDEM_EXPORT_SERIALIZATION)

@@ -71,6 +71,34 @@ namespace swelldem_py {
 } // namespace swelldem_py
 } // namespace yade
 
+// ---- the plugin's version in saved scenes. Each plugin class is saved with the plugin's version as
+// its Boost class version (PluginRegistry.cpp), which Boost writes once per class and archive, before
+// the object's fields, and gives back on load whatever it is: a scene is refused there, before a
+// field of another layout could be misread (binary archives) or fail on a tag (XML archives).
+#ifndef SWELLDEM_SCENE_VERSION
+#error "SWELLDEM_SCENE_VERSION (MAJOR * 10000 + MINOR * 100 + PATCH) is set by pkg/yade/CMakeLists.txt"
+#endif
+namespace yade {
+namespace swelldem_py {
+	constexpr unsigned kSceneVersion = SWELLDEM_SCENE_VERSION;
+	inline std::string versionText(unsigned v)
+	{
+		return std::to_string(v / 10000) + "." + std::to_string(v / 100 % 100) + "." + std::to_string(v % 100);
+	}
+	// A saved scene is read only by the plugin version that wrote it: fields are added, removed or
+	// reordered between versions, and Boost reads them by position.
+	inline void requireSceneVersion(const char* className, unsigned saved)
+	{
+		if (saved == kSceneVersion) return;
+		const std::string by = saved == 0 ? "a swelldem that did not record its version (0.1.0 or earlier)" : "swelldem " + versionText(saved);
+		throw std::runtime_error("swelldem: this scene was saved by " + by + "; the loaded plugin is swelldem " + versionText(kSceneVersion)
+		                         + " (first saved object: " + className + "). A scene is loaded only by the version that saved it: load it with "
+		                         + (saved == 0 ? string("that swelldem") : "swelldem " + versionText(saved))
+		                         + ", or build the scene again with this one (rerun its script)");
+	}
+}
+}
+
 // ---- attribute lists: #define ATTRS(X) X(type, name, default, flags, "doc [unit]") ...
 // flags say what an attribute is to the user: a setting (writable; validated by postLoad, which a
 // Python assignment calls, restoring the old value if it throws), a result (read-only in Python),
@@ -241,8 +269,9 @@ public:                                                                         
 		pyMethods(cls);                                                                                                                                \
 	}                                                                                                                                                      \
 	friend class boost::serialization::access;                                                                                                             \
-	template <class Archive> void serialize(Archive& ar, unsigned int)                                                                                     \
+	template <class Archive> void serialize(Archive& ar, unsigned int savedVersion)                                                                         \
 	{                                                                                                                                                      \
+		if (Archive::is_loading::value) swelldem_py::requireSceneVersion(#Class, savedVersion);                                                        \
 		ar& boost::serialization::make_nvp(#Base, boost::serialization::base_object<Base>(*this));                                                     \
 		ATTRS(SWELLDEM_ATTR_SERIALIZE)                                                                                                                 \
 		TABLE(SWELLDEM_TABLE_SERIALIZE)                                                                                                                \
