@@ -2,38 +2,61 @@
 #include "Ip2_ConcreteMat_ConcreteMat_SwellPhys.hpp"
 #include "core/Validate.hpp"
 #include <cmath>
+#include <iostream>
+#include <map>
 
 namespace yade {
 
 void Ip2_ConcreteMat_ConcreteMat_SwellPhys::postLoad() { swelldem::core::requirePositive("Ip2_ConcreteMat_ConcreteMat_SwellPhys.thickness [m]", thickness); }
 
+const char* Ip2_ConcreteMat_ConcreteMat_SwellPhys::slotName(const ConcreteMat& a, const ConcreteMat& b)
+{
+	// Platens first (a bar's end may touch one), then steel, then the concrete's own kinds.
+	if (a.platen || b.platen) return "platen";
+	if (a.steel && b.steel) return "steel";
+	if (a.steel || b.steel) return "bond";
+	if (a.isMortar() && b.isMortar()) return "mortar";
+	return !a.isMortar() && !b.isMortar() && a.aggregateId == b.aggregateId ? "agg" : "itz";
+}
+
+const shared_ptr<ContactKind>& Ip2_ConcreteMat_ConcreteMat_SwellPhys::slot(const char* name) const
+{
+	const string n = name;
+	return n == "platen" ? platen : n == "steel" ? steel : n == "bond" ? bond : n == "mortar" ? mortar : n == "agg" ? agg : itz;
+}
+
 void Ip2_ConcreteMat_ConcreteMat_SwellPhys::go(const shared_ptr<Material>& m1, const shared_ptr<Material>& m2, const shared_ptr<Interaction>& I)
 {
-	if (I->phys) return;
-	const auto* a = static_cast<const ConcreteMat*>(m1.get());
-	const auto* b = static_cast<const ConcreteMat*>(m2.get());
-	// Platens first (a bar's end may touch one), then steel, then the concrete's own kinds.
-	const bool  withPlaten = a->platen || b->platen, bothSteel = !withPlaten && a->steel && b->steel;
-	const bool  withSteel = !withPlaten && !bothSteel && (a->steel || b->steel), concrete = !withPlaten && !bothSteel && !withSteel;
-	const bool  mortar = concrete && a->isMortar() && b->isMortar(), sameAggregate = concrete && !mortar && a->aggregateId == b->aggregateId;
-	const shared_ptr<ContactKind>& kind
-	        = withPlaten ? platen : (bothSteel ? steel : (withSteel ? bond : (mortar ? this->mortar : (sameAggregate ? agg : itz))));
-	const char* which = withPlaten ? "platen" : (bothSteel ? "steel" : (withSteel ? "bond" : (mortar ? "mortar" : (sameAggregate ? "agg" : "itz"))));
-	const auto*                    geom = dynamic_cast<const ScGeom*>(I->geom.get());
-	// An Ip2 may not throw (YADE calls it inside its parallel loops): a contact it cannot make is
-	// left without physics and the log-time solvers raise the error after the loop.
+	// YADE calls this at every iteration of every contact: a contact made is left alone, unless it
+	// was made without a kind (its slot was None), which is made again in case the slot is now set.
+	if (I->phys) {
+		const auto* made = dynamic_cast<const SwellPhys*>(I->phys.get());
+		if (!made || made->kind) return;
+	}
+	const char*                    which = slotName(static_cast<const ConcreteMat&>(*m1), static_cast<const ConcreteMat&>(*m2));
+	const shared_ptr<ContactKind>& kind  = slot(which);
+	const auto*                    geom  = dynamic_cast<const ScGeom*>(I->geom.get());
+	shared_ptr<SwellPhys>          p(new SwellPhys);
+	if (geom) {
+		p->length = geom->refR1 + geom->refR2 - geom->penetrationDepth;
+		p->area   = 2 * std::min(geom->refR1, geom->refR2) * thickness;
+	}
+	// An Ip2 may not throw (YADE calls it inside its parallel loops), nor leave a contact without
+	// physics (Debian's YADE aborts on its assertion I->phys): a contact it cannot make gets physics
+	// without a kind, which carries no force, and the error is recorded for the log-time solvers to
+	// raise after the loop (requireContactKinds refuses such a scene before their first step).
 	if (!kind || !geom) {
-		recordFunctorError(!kind ? string("Ip2_ConcreteMat_ConcreteMat_SwellPhys.") + which
-		                                   + " is not set (contact of bodies " + std::to_string(I->id1) + " and " + std::to_string(I->id2)
-		                                   + "); allowed: a ContactKind"
-		                         : string("Ip2_ConcreteMat_ConcreteMat_SwellPhys: the contact geometry must be ScGeom (Ig2_Sphere_Sphere_ScGeom)"));
+		const string why = !kind ? "Ip2_ConcreteMat_ConcreteMat_SwellPhys." + string(which) + " = None is out of range (contact of bodies "
+		                                   + std::to_string(I->id1) + " and " + std::to_string(I->id2) + "); allowed: a ContactKind"
+		                         : string("Ip2_ConcreteMat_ConcreteMat_SwellPhys: the contact geometry must be ScGeom (Ig2_Sphere_Sphere_ScGeom)");
+		recordFunctorError(why);
+		// Under another integrator nothing raises it: say it once, on stderr.
+		if (!warned_.exchange(true)) std::cerr << "swelldem: " << why << "; the contact carries no force" << std::endl;
+		I->phys = p;
 		return;
 	}
-	shared_ptr<SwellPhys> p(new SwellPhys);
 	p->kind                   = kind;
 	p->kindId                 = kind->kindId;
-	p->length                 = geom->refR1 + geom->refR2 - geom->penetrationDepth;
-	p->area                   = 2 * std::min(geom->refR1, geom->refR2) * thickness;
 	p->tangensOfFrictionAngle = std::tan(kind->table.strength.residualFrictionAngle);
 	swelldem::core::ContactState& s = p->state;
 	// Stiffness and step data come with the contact's first physical step (Law2).
@@ -44,6 +67,63 @@ void Ip2_ConcreteMat_ConcreteMat_SwellPhys::go(const shared_ptr<Material>& m1, c
 		s.openingRef = s.opening = 0;
 	}
 	I->phys = p;
+}
+
+void requireContactKinds(Scene* scene, const string& solverName)
+{
+	// What the first pass of the engines recorded is covered by the checks below, and what an earlier
+	// run or scene left is not this run's: the solver starts with no pending functor error.
+	takeFunctorError();
+	const string head = "swelldem: " + solverName + " cannot start: ";
+	// The Ip2s of the scene's InteractionLoops, found through YADE's Python interface (the
+	// dispatchers' layout is not declared in compat/).
+	std::vector<shared_ptr<Ip2_ConcreteMat_ConcreteMat_SwellPhys>> ip2s;
+	{
+		namespace bp         = boost::python;
+		PyGILState_STATE gil = PyGILState_Ensure();
+		try {
+			for (const auto& e : scene->engines) {
+				if (!e) continue;
+				bp::object engine(e);
+				if (!PyObject_HasAttrString(engine.ptr(), "physDispatcher")) continue;
+				bp::object functors = engine.attr("physDispatcher").attr("functors");
+				for (long i = 0; i < bp::len(functors); ++i) {
+					bp::extract<shared_ptr<Ip2_ConcreteMat_ConcreteMat_SwellPhys>> f(functors[i]);
+					if (f.check()) ip2s.push_back(f());
+				}
+			}
+		} catch (const bp::error_already_set&) {
+			PyErr_Clear(); // the engines cannot be read: the contacts' check below still applies
+		}
+		PyGILState_Release(gil);
+	}
+	// The ConcreteMat materials of the bodies, with the first two bodies of each (a pair of one
+	// material needs two of its bodies).
+	std::map<const ConcreteMat*, std::vector<long>> bodiesOf;
+	for (const auto& b : scene->bodies->body)
+		if (b)
+			if (const auto* m = dynamic_cast<const ConcreteMat*>(b->material.get())) {
+				auto& ids = bodiesOf[m];
+				if (ids.size() < 2) ids.push_back(b->id);
+			}
+	for (const auto& ip2 : ip2s)
+		for (auto a = bodiesOf.begin(); a != bodiesOf.end(); ++a)
+			for (auto b = a; b != bodiesOf.end(); ++b) {
+				if (a == b && a->second.size() < 2) continue;
+				const char* which = Ip2_ConcreteMat_ConcreteMat_SwellPhys::slotName(*a->first, *b->first);
+				if (ip2->slot(which)) continue;
+				const long u = a->second[0], v = a == b ? a->second[1] : b->second[0], i = std::min(u, v), j = std::max(u, v);
+				throw std::invalid_argument(head + "Ip2_ConcreteMat_ConcreteMat_SwellPhys." + which + " = None is out of range; allowed: a ContactKind ("
+				                            + "the scene's bodies " + std::to_string(i) + " and " + std::to_string(j) + " would make a contact of this kind; "
+				                            + "set it before the run)");
+			}
+	const auto& L = scene->interactions->linIntrs;
+	for (size_t k = 0; k < scene->interactions->currSize; ++k)
+		if (L[k]->isReal())
+			if (const auto* p = dynamic_cast<const SwellPhys*>(L[k]->phys.get()); p && !p->kind)
+				throw std::invalid_argument(head + "the contact of bodies " + std::to_string(L[k]->id1) + " and " + std::to_string(L[k]->id2)
+				                            + " has SwellPhys.kind = None; allowed: a ContactKind (its Ip2 slot was None or its geometry not "
+				                              "ScGeom when it was made)");
 }
 
 } // namespace yade

@@ -22,7 +22,10 @@ public:
 	                             "(compression and friction only) and stress-free when the discs just touch [-]")
 	SWELLDEM_CLASS(Ip2_ConcreteMat_ConcreteMat_SwellPhys, IPhysFunctor,
 	               "Creates SwellPhys between two ConcreteMat particles. The facet area is set to the fallback 2 min(r1, r2) "
-	               "thickness; the mesostructure tools overwrite it with the Laguerre facet area before the first step.",
+	               "thickness; the mesostructure tools overwrite it with the Laguerre facet area before the first step. A kind "
+	               "left None may be for pairs the scene does not have: the log-time solvers refuse, before their first step, an "
+	               "Ip2 without a kind for a pair of the scene's materials; a contact made for a pair whose kind is None carries "
+	               "no force (and is made again once the kind is set).",
 	               SWELLDEM_IP2_ATTRS)
 	virtual ~Ip2_ConcreteMat_ConcreteMat_SwellPhys() { }
 	std::string get2DFunctorType1(void) const override { return "ConcreteMat"; }
@@ -30,6 +33,13 @@ public:
 	void        go(const shared_ptr<Material>& m1, const shared_ptr<Material>& m2, const shared_ptr<Interaction>& I) override;
 	void        postLoad();
 	template <class C> static void pyMethods(C&) { }
+	/// The kind slot (the attribute's name) of the contacts between particles of materials a and b.
+	static const char* slotName(const ConcreteMat& a, const ConcreteMat& b);
+	/// The slot's kind, or null.
+	const shared_ptr<ContactKind>& slot(const char* name) const;
+
+private:
+	std::atomic<bool> warned_ { false }; // a contact left without a kind was reported on stderr
 };
 
 } // namespace yade

@@ -33,7 +33,15 @@ bool Law2_ScGeom_SwellPhys_AgingSwelling::breakIfOverloaded(SwellPhys& p)
 bool Law2_ScGeom_SwellPhys_AgingSwelling::go(shared_ptr<IGeom>& ig, shared_ptr<IPhys>& ip, Interaction* I)
 {
 	auto*        geom = static_cast<ScGeom*>(ig.get());
-	auto*        p    = static_cast<SwellPhys*>(ip.get());
+	auto* p = static_cast<SwellPhys*>(ip.get());
+	if (!p->kind) {
+		// SwellPhys.kind refuses None, but the Ip2 leaves a contact it could not give a kind without
+		// one (YADE aborts on a contact without physics): it carries no force and the solvers raise.
+		recordFunctorError("SwellPhys.kind = None is out of range (contact of bodies " + std::to_string(I->getId1()) + " and "
+		                   + std::to_string(I->getId2()) + "); allowed: a ContactKind; the contact carries no force");
+		p->normalForce = p->shearForce = Vector3r::Zero();
+		return true;
+	}
 	ContactKind& kind = *p->kind;
 	try {
 		if (p->stepSerial != kind.stepSerial) {

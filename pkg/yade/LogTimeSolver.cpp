@@ -159,6 +159,7 @@ void LogTimeSolver::controlCollider()
 void LogTimeSolver::initialize()
 {
 	postLoad();
+	requireContactKinds(scene, getClassName());
 	for (const auto& b : scene->bodies->body)
 		if (b && (b->state->blockedDOFs & kNeed2D) != kNeed2D)
 			throw std::invalid_argument("swelldem: " + getClassName() + " is a 2D solver: body " + std::to_string(b->id)

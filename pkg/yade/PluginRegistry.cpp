@@ -11,6 +11,7 @@
 #include "SwelldemAbiProbe.hpp"
 #include "compat/YadeBuildCheck.hpp"
 
+#include <cstdlib>
 #include <iostream>
 
 #define SWELLDEM_PLUGIN_CLASSES(X)                                                                                                                             \
@@ -33,10 +34,19 @@ __attribute__((constructor)) static void announceSwelldemClasses()
 {
 	// Announcing the classes to a YADE whose binary layout is not the one the declarations were
 	// checked against would let Python build objects that YADE reads at the wrong offsets; the plugin
-	// stays silent instead, and says why once.
-	const std::string mismatch = swelldem_compat::yadeBuildMismatch(SWELLDEM_YADE_BUILD_IDS);
-	if (!mismatch.empty()) {
-		std::cerr << "swelldem: refusing to load: the running YADE is not the build this plugin was compiled for (" << mismatch
+	// stays silent instead, and says why once. YADE loads its own libraries (its folder's top level)
+	// before this plugin (in a subfolder), so every copy that will be mapped is mapped by now.
+	const auto problem = swelldem_compat::yadeBuildMismatch(SWELLDEM_YADE_BUILD_IDS);
+	if (problem.twoCopies) {
+		// Two copies of a YADE library each register YADE's classes and singletons, and the process
+		// dies at exit ("double free or corruption") after whatever it computed: stop before any work.
+		std::cerr << "swelldem: refusing to run: YADE's libraries are loaded twice in this process (" << problem.why
+		          << "each copy frees YADE's shared state at exit). Run without LD_LIBRARY_PATH pointing to a copy of YADE's libraries."
+		          << std::endl;
+		std::_Exit(2);
+	}
+	if (!problem.why.empty()) {
+		std::cerr << "swelldem: refusing to load: the running YADE is not the build this plugin was compiled for (" << problem.why
 		          << "YADE was upgraded or replaced after the build). The plugin's classes are not available; rebuild: bash scripts/setup.sh"
 		          << std::endl;
 		return;
@@ -47,5 +57,17 @@ __attribute__((constructor)) static void announceSwelldemClasses()
 	ClassFactory::instance().registerPluginClasses(fileAndClasses);
 }
 } // namespace yade
+
+// The plugin's version as each class's Boost class version (compat/Plugin.hpp, requireSceneVersion).
+// Written out instead of BOOST_CLASS_VERSION, whose 8-bit limit dates from archive formats older than
+// YADE's (Boost 1.74 stores a class version in 32 bits). Only this file instantiates the serializers.
+#define SWELLDEM_SCENE_VERSION_OF(C)                                                                                                                           \
+	template <> struct boost::serialization::version<yade::C> {                                                                                          \
+		typedef mpl::int_<SWELLDEM_SCENE_VERSION> type;                                                                                                \
+		typedef mpl::integral_c_tag                tag;                                                                                                \
+		BOOST_STATIC_CONSTANT(int, value = type::value);                                                                                               \
+	};
+SWELLDEM_PLUGIN_CLASSES(SWELLDEM_SCENE_VERSION_OF)
+#undef SWELLDEM_SCENE_VERSION_OF
 
 SWELLDEM_PLUGIN_CLASSES(SWELLDEM_EXPORT_SERIALIZATION)

@@ -105,4 +105,11 @@ public:
 	SWELLDEM_CLASS_INDEX(SwellPhys, FrictPhys)
 };
 
+/// Before a log-time solver's first step: every Ip2_ConcreteMat_ConcreteMat_SwellPhys of the scene's
+/// engines has a kind for each pair of ConcreteMat materials of its bodies, and every SwellPhys has
+/// a kind; throws std::invalid_argument naming the missing slot and two bodies that need it. Errors
+/// the functors recorded before the solver began (a contact made without a kind) are its own.
+/// (Defined with the Ip2, whose slots it checks; declared here for the solvers, which include this.)
+void requireContactKinds(Scene* scene, const string& solverName);
+
 } // namespace yade

@@ -1,9 +1,12 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 """The launcher behaves like `yade` with the plugin loaded; YADE's own self-test passes with the
-plugin loaded; the build refuses a YADE whose feature set differs from the declarations'."""
+plugin loaded; the build refuses a YADE whose feature set differs from the declarations'; at load,
+the plugin refuses a libyade of another build and two copies of one (by the mapped images' build ids)."""
 import os
 import shutil
 import subprocess
+
+import pytest
 
 from conftest import LAUNCHER, REPO, build_dir, plugin_classes
 
@@ -92,3 +95,67 @@ def test_plugin_refuses_other_yade_build(tmp_path):
     assert "swelldem: refusing to load" in bad.stderr
     assert f"has build id {real_id}, the plugin was built against build id {other_id}" in bad.stderr
     assert "scripts/setup.sh" in bad.stderr
+
+
+YADE_LIB = "/usr/lib/x86_64-linux-gnu/yade-double/libyade.so"
+
+
+def _patched_libyade():
+    """libyade.so's bytes with the last byte of its GNU build id changed, and that new id."""
+    real_id = _build_id(YADE_LIB)
+    data = bytearray(open(YADE_LIB, "rb").read())
+    at = data.find(bytes.fromhex(real_id))
+    assert at > 0 and data.count(bytes.fromhex(real_id)) == 1
+    data[at + len(real_id) // 2 - 1] ^= 0xFF
+    return bytes(data), real_id[:-2] + f"{int(real_id[-2:], 16) ^ 0xFF:02x}"
+
+
+def _work_script(tmp_path):
+    script = tmp_path / "work.py"
+    script.write_text("from yade import wrapper\nprint('WORK', hasattr(wrapper, 'ContactKind'))\n")
+    return script
+
+
+def _no_crash(p):
+    assert p.returncode not in (134, 139, -6, -11), p.stderr[-2000:]
+    assert "double free" not in p.stderr and "corruption" not in p.stderr, p.stderr[-2000:]
+
+
+@pytest.mark.parametrize("patched", [False, True], ids=["same-build-copy", "other-build-copy"])
+def test_two_copies_of_libyade_are_refused_before_any_work(tmp_path, patched):
+    """A copy of libyade.so found through LD_LIBRARY_PATH (boot.so's dependency) besides the one YADE
+    loads from its folder: two images of one library, whatever their build ids (stock YADE then dies
+    at exit with "double free or corruption"). The plugin stops the process before the script, exit
+    2, naming both files and, for a patched copy, its other build id."""
+    copy = tmp_path / "libcopy"
+    copy.mkdir()
+    if patched:
+        data, other_id = _patched_libyade()
+        (copy / "libyade.so").write_bytes(data)
+    else:
+        shutil.copy(YADE_LIB, copy / "libyade.so")
+    p = _launch("-n", "-x", str(_work_script(tmp_path)), env={"LD_LIBRARY_PATH": str(copy)})
+    _no_crash(p)
+    assert p.returncode == 2, p.stdout[-2000:] + p.stderr[-2000:]
+    assert "WORK" not in p.stdout
+    assert "swelldem: refusing to run: YADE's libraries are loaded twice" in p.stderr, p.stderr[-2000:]
+    assert f"2 copies of libyade.so are mapped: {copy / 'libyade.so'} (build id " in p.stderr, p.stderr[-2000:]
+    if patched:
+        assert f"{copy / 'libyade.so'} has build id {other_id}, the plugin was built against build id {_build_id(YADE_LIB)}" in p.stderr
+
+
+def test_a_libyade_of_another_build_loaded_alone_is_refused(tmp_path):
+    """The only libyade.so of the process is a copy with another build id (a copied prefix whose
+    libyade.so is the patched file, also first on LD_LIBRARY_PATH): recognised by its SONAME, read
+    from the mapped image; the plugin's classes stay hidden and the process ends normally."""
+    build = _overlay_with_plugin(tmp_path)
+    libdir = build / "prefix/lib/x86_64-linux-gnu/yade-double"
+    data, other_id = _patched_libyade()
+    (libdir / "libyade.so").unlink()
+    (libdir / "libyade.so").write_bytes(data)
+    p = _launch("-n", "-x", str(_work_script(tmp_path)), env={"SWELLDEM_BUILD_DIR": str(build), "LD_LIBRARY_PATH": str(libdir)})
+    _no_crash(p)
+    assert p.returncode == 0, p.stderr[-2000:]
+    assert "WORK False" in p.stdout, p.stdout[-2000:] + p.stderr[-2000:]
+    assert "swelldem: refusing to load" in p.stderr
+    assert f"{libdir / 'libyade.so'} has build id {other_id}, the plugin was built against build id {_build_id(YADE_LIB)}" in p.stderr

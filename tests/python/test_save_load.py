@@ -205,3 +205,69 @@ def test_a_save_in_a_cracking_step_with_low_rank_columns_continues_identically(y
     print("measured", res["held"])
     assert res["held"]["columns"] >= 1 and res["held"]["iterInStep"] > 1, "the save must hold low-rank columns mid-step"
     assert res["loaded"] == res["ref"]
+
+
+VERSIONED = r"""
+import gzip, re, struct, sys
+from swelldem import dem
+import swelldem
+W = yade.wrapper
+mat = W.ConcreteMat(young=30e9, poisson=0.2, density=2400, aggregateId=-1)
+kind = dem.contact_kind('MORTAR')
+solver = W.ImplicitLogTimeSolver(tStart=1.0, tEnd=10.0, stepsPerDecade=2, verbose=False)
+dem.build_scene([0, 1e-3], [0, 0], [5e-4, 5e-4], [mat], W.Ip2_ConcreteMat_ConcreteMat_SwellPhys(mortar=kind, itz=kind, agg=kind),
+                W.Law2_ScGeom_SwellPhys_AgingSwelling(), solver, contacts=[(0, 1)])
+O.run(3, True)
+O.save('scene.xml')
+O.save('scene.yade.gz')
+xml = open('scene.xml').read()
+ours = [c for c in re.findall(r'class_name="yade::(\w+)"[^>]*version="(\d+)"', xml) if c[0] in PLUGIN_CLASSES]
+out = {'version': swelldem.__version__, 'recorded': sorted(set(ours))}
+
+def edited_xml(v):
+    # every plugin class's recorded version replaced (YADE's own classes keep theirs)
+    return re.sub(r'(class_name="yade::(?:%s)"[^>]*version=")\d+"' % '|'.join(n for n, _ in ours), lambda m: m.group(1) + str(v) + '"', xml)
+
+def edited_binary(v):
+    data = gzip.open('scene.yade.gz').read()
+    return re.sub(rb'(yade::(?:%s)\x01)....' % b'|'.join(n.encode() for n, _ in ours), lambda m: m.group(1) + struct.pack('<I', v), data, flags=re.S)
+
+def attempt(path):
+    try:
+        O.load(path)
+        return 'loaded'
+    except Exception as e:
+        return f'{type(e).__name__}: {e}'
+
+for name, v in (('newer', 20304), ('older', 99), ('unrecorded', 0)):
+    open(name + '.xml', 'w').write(edited_xml(v))
+    with gzip.open(name + '.yade.gz', 'wb') as f:
+        f.write(edited_binary(v))
+    out[name] = {'xml': attempt(name + '.xml'), 'binary': attempt(name + '.yade.gz')}
+out['same'] = {'xml': attempt('scene.xml'), 'binary': attempt('scene.yade.gz')}
+O.run(5, True)
+out['runs'] = solver.step
+dump(out)
+"""
+
+
+def test_a_scene_saved_by_another_version_says_which_in_one_line(yade_run):
+    """The plugin's version (swelldem.__version__, encoded MAJOR * 10000 + MINOR * 100 + PATCH) is the
+    Boost class version of every plugin class in a saved scene; a scene whose recorded versions were
+    edited to another release (newer, older, or 0 as saved before versions were recorded), XML or
+    binary, is refused by the raw O.load in one line naming both versions and what to do, instead of
+    Boost's "tag mismatch" or a misread; the unedited scene loads and runs."""
+    res = yade_run(f"PLUGIN_CLASSES = {plugin_classes()!r}\n" + VERSIONED, threads=1)
+    major, minor, patch = (int(x) for x in res["version"].split("."))
+    code = str(major * 10000 + minor * 100 + patch)
+    assert {n for n, _ in res["recorded"]} >= {"Ip2_ConcreteMat_ConcreteMat_SwellPhys", "ImplicitLogTimeSolver", "ConcreteMat", "SwellPhys"}
+    assert all(v == code for _, v in res["recorded"]), res["recorded"]
+    this = f"the loaded plugin is swelldem {res['version']} (first saved object: Ip2_ConcreteMat_ConcreteMat_SwellPhys)"
+    for name, saved, load_with in (("newer", "swelldem 2.3.4", "swelldem 2.3.4"), ("older", "swelldem 0.0.99", "swelldem 0.0.99"),
+                                   ("unrecorded", "a swelldem that did not record its version (0.1.0 or earlier)", "that swelldem")):
+        for fmt in ("xml", "binary"):
+            msg = res[name][fmt]
+            assert msg == (f"RuntimeError: swelldem: this scene was saved by {saved}; {this}. A scene is loaded only by the version "
+                           f"that saved it: load it with {load_with}, or build the scene again with this one (rerun its script)"), (name, fmt, msg)
+    assert res["same"] == {"xml": "loaded", "binary": "loaded"}
+    assert res["runs"] >= 1

@@ -71,6 +71,34 @@ namespace swelldem_py {
 } // namespace swelldem_py
 } // namespace yade
 
+// ---- the plugin's version in saved scenes. Each plugin class is saved with the plugin's version as
+// its Boost class version (PluginRegistry.cpp), which Boost writes once per class and archive, before
+// the object's fields, and gives back on load whatever it is: a scene is refused there, before a
+// field of another layout could be misread (binary archives) or fail on a tag (XML archives).
+#ifndef SWELLDEM_SCENE_VERSION
+#error "SWELLDEM_SCENE_VERSION (MAJOR * 10000 + MINOR * 100 + PATCH) is set by pkg/yade/CMakeLists.txt"
+#endif
+namespace yade {
+namespace swelldem_py {
+	constexpr unsigned kSceneVersion = SWELLDEM_SCENE_VERSION;
+	inline std::string versionText(unsigned v)
+	{
+		return std::to_string(v / 10000) + "." + std::to_string(v / 100 % 100) + "." + std::to_string(v % 100);
+	}
+	// A saved scene is read only by the plugin version that wrote it: fields are added, removed or
+	// reordered between versions, and Boost reads them by position.
+	inline void requireSceneVersion(const char* className, unsigned saved)
+	{
+		if (saved == kSceneVersion) return;
+		const std::string by = saved == 0 ? "a swelldem that did not record its version (0.1.0 or earlier)" : "swelldem " + versionText(saved);
+		throw std::runtime_error("swelldem: this scene was saved by " + by + "; the loaded plugin is swelldem " + versionText(kSceneVersion)
+		                         + " (first saved object: " + className + "). A scene is loaded only by the version that saved it: load it with "
+		                         + (saved == 0 ? string("that swelldem") : "swelldem " + versionText(saved))
+		                         + ", or build the scene again with this one (rerun its script)");
+	}
+}
+}
+
 // ---- attribute lists: #define ATTRS(X) X(type, name, default, flags, "doc [unit]") ...
 // flags say what an attribute is to the user: a setting (writable; validated by postLoad, which a
 // Python assignment calls, restoring the old value if it throws), a result (read-only in Python),
@@ -86,9 +114,15 @@ namespace swelldem_py {
 	template <class T> void afterLoad(T& t) { afterLoadImpl(t, 0); }
 	template <class T> struct IsVector : std::false_type { };
 	template <class E, class A> struct IsVector<std::vector<E, A>> : std::true_type { };
+	template <class T> struct IsObject : std::false_type { };
+	template <class E> struct IsObject<shared_ptr<E>> : std::true_type {
+		using Element = E;
+	};
 	template <class T> std::string shown(const T& v)
 	{
-		if constexpr (std::is_arithmetic_v<T> || std::is_same_v<T, std::string>) {
+		if constexpr (IsObject<T>::value) {
+			return v ? v->getClassName() : std::string("None");
+		} else if constexpr (std::is_arithmetic_v<T> || std::is_same_v<T, std::string>) {
 			std::ostringstream s;
 			s << v;
 			return s.str();
@@ -118,6 +152,40 @@ namespace swelldem_py {
 			throw;
 		}
 	}
+	// An object attribute (a shared_ptr, e.g. a ContactKind) takes any Python value: boost.python's own
+	// conversion would refuse another type with a bare signature mismatch, and its pySetAttr path
+	// (constructor keywords, updateAttrs) would keep a refused value. Here a value of another type is
+	// refused in the plugin's form, None reaches postLoad (which decides whether the attribute may be
+	// empty), and a value postLoad refuses is not kept, whichever path set it.
+	template <class C, class E> void setObject(C& self, const char* name, shared_ptr<E>& member, const boost::python::object& value)
+	{
+		shared_ptr<E> v;
+		if (!value.is_none()) {
+			boost::python::extract<shared_ptr<E>> x(value);
+			if (!x.check()) {
+				const std::string given = boost::python::extract<std::string>(boost::python::str(value.attr("__repr__")()));
+				throw std::invalid_argument("swelldem: " + self.getClassName() + "." + name + " = " + given + " is out of range; allowed: a "
+				                            + E().getClassName() + " object");
+			}
+			v = x();
+		}
+		setChecked(self, name, member, v);
+	}
+	// pySetAttr: values as boost.python converts them (validated by the postLoad after all are set),
+	// objects as above.
+	template <class C, class T> void setAttr(C&, const char*, T& member, const boost::python::object& value) { member = boost::python::extract<T>(value); }
+	template <class C, class E> void setAttr(C& self, const char* name, shared_ptr<E>& member, const boost::python::object& value)
+	{
+		setObject(self, name, member, value);
+	}
+	// What a Python setter of an attribute of type T takes: the value itself, or any object for objects.
+	template <class T> using PyValue = std::conditional_t<IsObject<T>::value, boost::python::object, T>;
+	template <class C, class T> void setFromPython(C& self, const char* name, T& member, const PyValue<T>& value)
+	{
+		if constexpr (IsObject<T>::value) setObject(self, name, member, value);
+		else
+			setChecked(self, name, member, value);
+	}
 }
 }
 #define SWELLDEM_ATTR_MEMBER(type, name, def, flags, doc) type name = def;
@@ -127,7 +195,7 @@ namespace swelldem_py {
 	if (key == #name) {                                                                                                                                    \
 		if ((flags) & (swelldem_attr::Result | swelldem_attr::Internal))                                                                               \
 			throw std::invalid_argument(getClassName() + "." #name " is a result, not a setting: it cannot be set");                            \
-		name = boost::python::extract<type>(value);                                                                                                    \
+		swelldem_py::setAttr(*this, #name, name, value);                                                                                               \
 		return;                                                                                                                                        \
 	}
 #define SWELLDEM_ATTR_GET(type, name, def, flags, doc)                                                                                                         \
@@ -137,7 +205,9 @@ namespace swelldem_py {
 		auto getter = boost::python::make_getter(&ThisClass::name, boost::python::return_value_policy<boost::python::return_by_value>());             \
 		if ((flags)&swelldem_attr::Result) cls.add_property(#name, getter, "(result, read-only) " doc);                                                \
 		else                                                                                                                                           \
-			cls.add_property(#name, getter, +[](ThisClass& self, const type& v) { swelldem_py::setChecked(self, #name, self.name, v); }, doc);          \
+			cls.add_property(                                                                                                                      \
+			        #name, getter,                                                                                                                 \
+			        +[](ThisClass& self, const swelldem_py::PyValue<type>& v) { swelldem_py::setFromPython(self, #name, self.name, v); }, doc);  \
 	}
 // A table of parameters stored in a plain struct member `table` (the physics core's own struct):
 // #define TABLE(X) X(type, name, member path in the struct, default, "doc [unit]"); all are settings.
@@ -199,8 +269,9 @@ public:                                                                         
 		pyMethods(cls);                                                                                                                                \
 	}                                                                                                                                                      \
 	friend class boost::serialization::access;                                                                                                             \
-	template <class Archive> void serialize(Archive& ar, unsigned int)                                                                                     \
+	template <class Archive> void serialize(Archive& ar, unsigned int savedVersion)                                                                         \
 	{                                                                                                                                                      \
+		if (Archive::is_loading::value) swelldem_py::requireSceneVersion(#Class, savedVersion);                                                        \
 		ar& boost::serialization::make_nvp(#Base, boost::serialization::base_object<Base>(*this));                                                     \
 		ATTRS(SWELLDEM_ATTR_SERIALIZE)                                                                                                                 \
 		TABLE(SWELLDEM_TABLE_SERIALIZE)                                                                                                                \
