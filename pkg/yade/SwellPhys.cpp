@@ -6,22 +6,27 @@ namespace yade {
 
 void SwellPhys::postLoad()
 {
+	// A contact made by the Ip2 gets its geometry right after; zero means "not set yet".
+	if (area != 0) swelldem::core::requirePositive("SwellPhys.area [m2]", area);
+	if (length != 0) swelldem::core::requirePositive("SwellPhys.length [m]", length);
+	if (!(swellDispInf < 0)) swelldem::core::requireNonNegative("SwellPhys.swellDispInf [m]", swellDispInf);
+}
+
+void SwellPhys::checkObject(const char*, const shared_ptr<ContactKind>& value) const
+{
 	// Every user of a contact (the law, the solvers' set-up, commit and breaks, the implicit solver's
-	// tangent) reads its kind: a contact without one is refused here, before anything reads it.
-	if (!kind)
+	// tangent) reads its kind: Python cannot take it away. (A default-made or loaded SwellPhys may have
+	// none; the law guards it, and the log-time solvers refuse such a contact before their first step.)
+	if (!value)
 		throw std::invalid_argument("swelldem: SwellPhys.kind = None is out of range; allowed: a ContactKind (a contact cannot be left "
 		                            "without its kind; assign another ContactKind to change it)");
 	// A contact that has run physical steps under a log-time solver takes only a kind the solver has
 	// begun steps on: a kind new to the scene has no law for the current step (the contact would
 	// compute it at the default age of 28 days, not at the step's times) until the next step begins.
-	if (stepSerial > 0 && kind->stepSerial == 0)
-		throw std::invalid_argument("swelldem: SwellPhys.kind = ContactKind '" + kind->name
+	if (stepSerial > 0 && value->stepSerial == 0)
+		throw std::invalid_argument("swelldem: SwellPhys.kind = ContactKind '" + value->name
 		                            + "' is out of range; allowed: a kind of this running scene (one its log-time solver has begun "
 		                              "steps on); to change a kind during a run, change its parameters (they apply from the next step)");
-	// A contact made by the Ip2 gets its geometry right after; zero means "not set yet".
-	if (area != 0) swelldem::core::requirePositive("SwellPhys.area [m2]", area);
-	if (length != 0) swelldem::core::requirePositive("SwellPhys.length [m]", length);
-	if (!(swellDispInf < 0)) swelldem::core::requireNonNegative("SwellPhys.swellDispInf [m]", swellDispInf);
 }
 
 } // namespace yade

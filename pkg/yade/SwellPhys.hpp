@@ -59,6 +59,8 @@ public:
 	SwellPhys() { createIndex(); }
 	virtual ~SwellPhys() { }
 	void postLoad();
+	/// What Python may set kind to (compat/Plugin.hpp): a ContactKind, and during a run one of its scene.
+	void checkObject(const char* name, const shared_ptr<ContactKind>& value) const;
 	template <class C> static void pyMethods(C& cls)
 	{
 		using S = swelldem::core::ContactState;

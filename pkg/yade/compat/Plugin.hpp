@@ -137,6 +137,11 @@ namespace swelldem_py {
 	}
 	// Assignment from Python: validate through postLoad; a refused value leaves the object as it was
 	// and the error names the attribute as the user wrote it (the core names its own parameter).
+	template <class C, class T> std::invalid_argument refused(const C& self, const char* name, const T& value, const T& old, const std::exception& why)
+	{
+		return std::invalid_argument(self.getClassName() + "." + name + " = " + shown(value) + " refused, the old value " + shown(old)
+		                             + " kept: " + why.what());
+	}
 	template <class C, class T> void setChecked(C& self, const char* name, T& member, const T& value)
 	{
 		T old  = member;
@@ -145,18 +150,25 @@ namespace swelldem_py {
 			self.postLoad();
 		} catch (const std::exception& e) {
 			member = old;
-			throw std::invalid_argument(self.getClassName() + "." + name + " = " + shown(value) + " refused, the old value "
-			                            + shown(old) + " kept: " + e.what());
+			throw refused(self, name, value, old, e);
 		} catch (...) {
 			member = old;
 			throw;
 		}
 	}
+	// Classes may define checkObject(name, value): what an object attribute may be set to from Python
+	// (and only from there: a default-made or saved object may hold what a user may not set, e.g. a
+	// SwellPhys without its kind, which YADE's own save/load test makes).
+	template <class C, class V> auto checkObjectImpl(const C& c, const char* name, const V& v, int) -> decltype(c.checkObject(name, v), void())
+	{
+		c.checkObject(name, v);
+	}
+	template <class C, class V> void checkObjectImpl(const C&, const char*, const V&, long) { }
 	// An object attribute (a shared_ptr, e.g. a ContactKind) takes any Python value: boost.python's own
 	// conversion would refuse another type with a bare signature mismatch, and its pySetAttr path
 	// (constructor keywords, updateAttrs) would keep a refused value. Here a value of another type is
-	// refused in the plugin's form, None reaches postLoad (which decides whether the attribute may be
-	// empty), and a value postLoad refuses is not kept, whichever path set it.
+	// refused in the plugin's form, then the class's checkObject and postLoad, and a refused value is
+	// not kept, whichever path set it.
 	template <class C, class E> void setObject(C& self, const char* name, shared_ptr<E>& member, const boost::python::object& value)
 	{
 		shared_ptr<E> v;
@@ -168,6 +180,11 @@ namespace swelldem_py {
 				                            + E().getClassName() + " object");
 			}
 			v = x();
+		}
+		try {
+			checkObjectImpl(self, name, v, 0);
+		} catch (const std::exception& e) {
+			throw refused(self, name, v, member, e);
 		}
 		setChecked(self, name, member, v);
 	}
