@@ -622,6 +622,17 @@ void ImplicitLogTimeSolver::moveBodies(Real fraction)
 	}
 }
 
+void ImplicitLogTimeSolver::relaxIteration(const Balance& b)
+{
+	// New contacts change the Gershgorin bound; a break only lowers a stiffness, which keeps it safe.
+	if (b.nReal != relax.nContactsSeen) {
+		relax.computeMasses(scene, DynamicRelaxation::kDefaultMassSafety);
+		forEachSpring([this](int id, int axis, Real k) { relax.addStiffness(scene, DynamicRelaxation::kDefaultMassSafety, id, axis, k); });
+	}
+	relax.leapfrog(scene, relax.damping(scene, DynamicRelaxation::kDefaultMaxDamping));
+	++relaxationIterations;
+}
+
 void ImplicitLogTimeSolver::action()
 {
 	if (!startIteration()) return;
@@ -676,12 +687,7 @@ void ImplicitLogTimeSolver::action()
 			zeroVelocities(scene);
 			relax.start(scene);
 		}
-		if (b.nReal != relax.nContactsSeen) {
-			relax.computeMasses(scene, DynamicRelaxation::kDefaultMassSafety);
-			forEachSpring([this](int id, int axis, Real k) { relax.addStiffness(scene, DynamicRelaxation::kDefaultMassSafety, id, axis, k); });
-		}
-		relax.leapfrog(scene, relax.damping(scene, DynamicRelaxation::kDefaultMaxDamping));
-		++relaxationIterations;
+		relaxIteration(b);
 		return;
 	}
 	if (!relaxing && iterInStep - newtonSince > newtonLimit) {
@@ -693,12 +699,7 @@ void ImplicitLogTimeSolver::action()
 	}
 	if (relaxing) {
 		if (b.ratio > relaxTolerance * std::pow(1e-2, relaxPhase - 1)) {
-			if (b.nReal != relax.nContactsSeen) {
-				relax.computeMasses(scene, DynamicRelaxation::kDefaultMassSafety);
-				forEachSpring([this](int id, int axis, Real k) { relax.addStiffness(scene, DynamicRelaxation::kDefaultMassSafety, id, axis, k); });
-			}
-			relax.leapfrog(scene, relax.damping(scene, DynamicRelaxation::kDefaultMaxDamping));
-			++relaxationIterations;
+			relaxIteration(b);
 			return;
 		}
 		relaxing    = false;

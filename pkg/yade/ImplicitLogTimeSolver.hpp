@@ -125,6 +125,7 @@ private:
 	void                                  factor();
 	Eigen::Matrix<Real, Eigen::Dynamic, 1> solveWithCoupling(const Eigen::Matrix<Real, Eigen::Dynamic, 1>& r); // K^-1 r, Woodbury for the coupling
 	long                                  holdMechanisms(const Eigen::Matrix<Real, Eigen::Dynamic, 1>& du); // discs newly held (mechanismMove)
+	void                                  relaxIteration(const Balance& b); // one dynamic relaxation iteration
 	void                                  moveBodies(Real fraction); // by fraction x lineMove, through the velocities
 	Real                                  residualMerit();           // |r| over the free DOFs, torques over the radius [N]; sets bodyRadius
 	std::unique_ptr<ImplicitLinearSystem> sys; // not saved: rebuilt from the scene, it gives the same factor
