@@ -97,25 +97,25 @@ def expansion_at(age):
 
 
 def run_tests(prepare, age, fc_ref=None, e_ref=None):
-    """Each test on a fresh copy (prepare() fills O and returns the idle steps)."""
+    """Each test on a fresh copy (prepare() fills O)."""
     res = {}
     for name in ("tension", "compression", "sdt"):
         if name not in args.tests:
             continue
-        n_idle = prepare()
+        prepare()
         if name == "sdt":
             # the same strain step for the swollen specimen as for the undamaged one: a softer
             # specimen takes more steps to the same load
             deps = args.sdt_fraction * fc_ref / e_ref / args.sdt_steps
             legs = residual.sdt_legs(deps, args.sdt_fraction * fc_ref, args.sdt_cycles)
-            r = residual.run_test(assembly, "compression", legs, age, n_idle=n_idle, tolerance=args.test_tolerance,
+            r = residual.run_test(assembly, "compression", legs, age, tolerance=args.test_tolerance,
                                   max_steps=8 * args.sdt_steps * args.sdt_cycles + 20, solver_name=args.test_solver)
             r["strain_step"] = deps
             r.update(residual.sdt_indices(r["strain"], r["stress_Pa"], r["branch"]))
             r["target_Pa"] = args.sdt_fraction * fc_ref
         else:
             step = args.strain_step_tension if name == "tension" else args.strain_step_compression
-            r = residual.run_test(assembly, name, residual.strength_legs(name, step, 200 * step), age, n_idle=n_idle,
+            r = residual.run_test(assembly, name, residual.strength_legs(name, step, 200 * step), age,
                                   tolerance=args.test_tolerance, max_steps=220, solver_name=args.test_solver)
             r.update(residual.strength_result(r))
             if name == "compression" and fc_ref is None:

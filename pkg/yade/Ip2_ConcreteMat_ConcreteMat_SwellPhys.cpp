@@ -76,8 +76,10 @@ void requireContactKinds(Scene* scene, const string& solverName)
 	takeFunctorError();
 	const string head = "swelldem: " + solverName + " cannot start: ";
 	// The Ip2s of the scene's InteractionLoops, found through YADE's Python interface (the
-	// dispatchers' layout is not declared in compat/).
-	std::vector<shared_ptr<Ip2_ConcreteMat_ConcreteMat_SwellPhys>> ip2s;
+	// dispatchers' layout is not declared in compat/). Raw pointers (the scene's dispatchers own the
+	// functors): a shared_ptr extracted from Python owns a reference to a Python object and must not
+	// outlive the GIL held here; released later, it can free that object without the GIL and abort.
+	std::vector<const Ip2_ConcreteMat_ConcreteMat_SwellPhys*> ip2s;
 	{
 		namespace bp         = boost::python;
 		PyGILState_STATE gil = PyGILState_Ensure();
@@ -89,7 +91,7 @@ void requireContactKinds(Scene* scene, const string& solverName)
 				bp::object functors = engine.attr("physDispatcher").attr("functors");
 				for (long i = 0; i < bp::len(functors); ++i) {
 					bp::extract<shared_ptr<Ip2_ConcreteMat_ConcreteMat_SwellPhys>> f(functors[i]);
-					if (f.check()) ip2s.push_back(f());
+					if (f.check()) ip2s.push_back(f().get());
 				}
 			}
 		} catch (const bp::error_already_set&) {

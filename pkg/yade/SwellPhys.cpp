@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "SwellPhys.hpp"
+#include "LogTimeSolver.hpp"
 #include "core/Validate.hpp"
 
 namespace yade {
@@ -27,6 +28,32 @@ void SwellPhys::checkObject(const char*, const shared_ptr<ContactKind>& value) c
 		throw std::invalid_argument("swelldem: SwellPhys.kind = ContactKind '" + value->name
 		                            + "' is out of range; allowed: a kind of this running scene (one its log-time solver has begun "
 		                              "steps on); to change a kind during a run, change its parameters (they apply from the next step)");
+}
+
+void SwellPhys::startAnotherRun(const boost::python::object& given)
+{
+	// Any value is taken, so that a wrong one gets the plugin's message, not a signature mismatch.
+	boost::python::extract<shared_ptr<ContactKind>> x(given);
+	const shared_ptr<ContactKind> value = x.check() ? x() : shared_ptr<ContactKind>();
+	if (!value)
+		throw std::invalid_argument("swelldem: SwellPhys.startAnotherRun(kind = " + string(boost::python::extract<string>(boost::python::str(given)))
+		                            + "): kind is out of range; allowed: a ContactKind");
+	// Under a solver that has begun its steps a new kind would have no law for the current step (see
+	// checkObject): another run starts on a scene whose log-time solvers are gone or not begun.
+	namespace bp = boost::python;
+	const bp::object engines = bp::import("yade").attr("Omega")().attr("engines");
+	for (long i = 0; i < bp::len(engines); ++i) {
+		bp::extract<const LogTimeSolver*> e(engines[i]);
+		if (e.check() && e() && !e()->times.empty())
+			throw std::invalid_argument("swelldem: SwellPhys.startAnotherRun(kind '" + value->name + "') refused: the scene's "
+			                            + e()->getClassName() + " has begun its steps (step " + std::to_string(e()->step) + "/"
+			                            + std::to_string(e()->nSteps()) + "); allowed: on a scene whose log-time solvers have not begun "
+			                              "(take the saved run's solver out of O.engines first)");
+	}
+	kind = value;
+	// -1 matches no kind's step serial: the contact sets itself up at kind's next step, whatever
+	// serial the saved run had reached; until its solver begins that step the law holds it at no force.
+	stepSerial = -1;
 }
 
 } // namespace yade

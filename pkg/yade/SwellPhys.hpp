@@ -61,9 +61,15 @@ public:
 	void postLoad();
 	/// What Python may set kind to (compat/Plugin.hpp): a ContactKind, and during a run one of its scene.
 	void checkObject(const char* name, const shared_ptr<ContactKind>& value) const;
+	/// Another run on this contact's present state under `kind` (a test of a saved specimen).
+	void startAnotherRun(const boost::python::object& kind);
 	template <class C> static void pyMethods(C& cls)
 	{
 		using S = swelldem::core::ContactState;
+		cls.def("startAnotherRun", &SwellPhys::startAnotherRun, boost::python::arg("kind"),
+		        "Gives the contact `kind` for another run on its present state (a loading test of a saved specimen): forces, "
+		        "damage and creep history stay, the step data start afresh, so that the first physical step of kind's "
+		        "log-time solver sets the contact up (SwellPhys.kind itself takes only a kind of the running scene) [-].");
 		cls.add_property("kindName", &SwellPhys::kindName, "Name of the contact's kind [-]");
 		cls.add_property("swellingDispInf", &SwellPhys::effectiveSwellDispInf, "Ultimate swelling displacement in force (own or the kind's) [m]");
 		cls.add_property("fnMax", &SwellPhys::fnMax, "Tensile strength of the contact f_t A (inf when damage is off) [N]");

@@ -186,15 +186,12 @@ def kinds_for_test(kinds):
 
 
 def swap_kinds(new):
-    """Gives every real SwellPhys contact of O the kind of its kindId in `new`; returns the largest
-    step serial of the contacts (see run_test: steps run idle until the new kinds are past it)."""
+    """Starts another run on every real SwellPhys contact of O under the kind of its kindId in
+    `new` (SwellPhys.startAnotherRun: state kept, step data set up by the test solver's first step)."""
     yade, _ = _yade()
-    serial = 0
     for I in yade.Omega().interactions:
         if I.isReal and hasattr(I.phys, "kind"):
-            serial = max(serial, I.phys.stepSerial)
-            I.phys.kind = new[I.phys.kind.kindId]
-    return serial
+            I.phys.startAnotherRun(new[I.phys.kind.kindId])
 
 
 class _Loader:
@@ -381,21 +378,19 @@ def sdt_legs(deps, target_Pa, cycles=SDT_CYCLES):
 
 
 def load_copy(path):
-    """Loads a saved swelling state into O, swaps its contacts to test kinds; returns the number
-    of idle steps a test solver needs first (see run_test)."""
+    """Loads a saved swelling state into O, takes its swelling solver out and swaps its contacts to
+    test kinds (run_test adds the test solver)."""
     yade, _ = _yade()
-    yade.Omega().load(path)
-    # A contact sets itself up for a step when its step serial differs from its kind's; the new
-    # kinds count from 1, so steps run idle until they are past the serial the contacts carry.
-    serial = swap_kinds(kinds_for_test(scene_kinds()))
-    return int(serial) + 2
+    O = yade.Omega()
+    O.load(path)
+    O.engines = [e for e in O.engines if not hasattr(e, "stepHook")]
+    swap_kinds(kinds_for_test(scene_kinds()))
 
 
 def fresh_specimen(assembly, kinds_by_name):
     """The undamaged specimen: the assembly as a new scene with test kinds made from kinds_by_name
-    ({'MORTAR': ContactKind, ...}); returns 0 idle steps."""
+    ({'MORTAR': ContactKind, ...})."""
     from . import dem, paper
     tk = kinds_for_test({paper.KIND_IDS[n]: k for n, k in kinds_by_name.items()})
     dummy = dem.make_solver("adr", verbose=False)
     dem.to_yade(assembly, {n: tk[paper.KIND_IDS[n]] for n in kinds_by_name}, dummy)
-    return 0

@@ -77,7 +77,8 @@ dump(out)
 
 def test_a_kind_of_another_type_or_not_of_the_running_scene_is_refused(yade_run):
     """A ConcreteMat given as a kind (contact and Ip2 slot), a number to the Ip2's constructor, and a
-    ContactKind made after the run began: each a ValueError in the plugin's form; the run finishes."""
+    ContactKind made after the run began (as the kind, or through startAnotherRun, which also takes no
+    None and no other type): each a ValueError in the plugin's form; the run finishes."""
     res, _ = _run(yade_run, r"""
 out = {}
 for solver in SOLVERS:
@@ -87,8 +88,11 @@ for solver in SOLVERS:
     out[solver] = {"phys_wrong_type": attempt(lambda: setattr(ph, "kind", mat)),
                    "ip2_wrong_type": attempt(lambda: setattr(ip2, "itz", mat)),
                    "ip2_ctor_number": attempt(lambda: W.Ip2_ConcreteMat_ConcreteMat_SwellPhys(mortar=3))}
+    out[solver]["another_run_none"] = attempt(lambda: ph.startAnotherRun(None))
+    out[solver]["another_run_wrong_type"] = attempt(lambda: ph.startAnotherRun(mat))
     O.run(3, True)
     out[solver]["foreign_kind"] = attempt(lambda: setattr(ph, "kind", W.ContactKind(name="OTHER", young=1e9)))
+    out[solver]["another_run_begun"] = attempt(lambda: ph.startAnotherRun(W.ContactKind(name="OTHER", young=1e9)))
     out[solver]["own_kind"] = attempt(lambda: setattr(ph, "kind", kind))
     while not integ.finished:
         O.run(500, True)
@@ -104,6 +108,10 @@ dump(out)
         for key in ("phys_wrong_type", "ip2_wrong_type"):
             assert "is out of range; allowed: a ContactKind object" in r[key], r[key]
         assert "ContactKind 'OTHER' is out of range; allowed: a kind of this running scene" in r["foreign_kind"], r
+        assert r["another_run_none"].startswith("ValueError: swelldem: SwellPhys.startAnotherRun(kind = None): kind is out of range"), r
+        assert "startAnotherRun(kind = <ConcreteMat instance" in r["another_run_wrong_type"], r
+        assert (f"startAnotherRun(kind 'OTHER') refused: the scene's {solver} has begun its steps (step " in r["another_run_begun"]
+                and "allowed: on a scene whose log-time solvers have not begun" in r["another_run_begun"]), r
         assert r["own_kind"] == "accepted" and r["finished"], r
 
 
