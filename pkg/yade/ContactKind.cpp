@@ -18,64 +18,16 @@ core::ContactKindParams ContactKind::params() const
 	}
 }
 
+namespace {
+	std::atomic<unsigned long> kindsMade { 0 };
+}
+
+ContactKind::ContactKind() : instance_(++kindsMade) { }
+
 void ContactKind::postLoad()
 {
 	params(); // bad input fails here, before any work starts
-	changed_.store(true, std::memory_order_release);
-}
-
-void ContactKind::install(std::unique_ptr<core::ContactLaw> law)
-{
-	if (law_) retired_.push_back(std::move(law_));
-	law_ = std::move(law);
-	lawReady_.store(law_.get(), std::memory_order_release);
-}
-
-void ContactKind::beginStep(Real shortestLag_, Real longestLag_, Real tPrev, Real t)
-{
-	std::lock_guard<std::mutex> lock(lawMutex_);
-	const core::ContactKindParams p = params();
-	if (!law_ || p != law_->params() || shortestLag_ != shortestLag || longestLag_ != longestLag) {
-		auto law = std::make_unique<core::ContactLaw>(p, shortestLag_, longestLag_);
-		if (law_ && stepSerial > 0 && law->hiddenStateSize() != law_->hiddenStateSize())
-			throw std::invalid_argument("swelldem: ContactKind '" + name + "': this change gives its Kelvin chain "
-			                            + std::to_string(law->hiddenStateSize() / 2) + " units instead of "
-			                            + std::to_string(law_->hiddenStateSize() / 2)
-			                            + " while its contacts have a creep history; allowed during a run: changes that keep the chain "
-			                              "(behaviour, kelvinUnitsPerDecade and the lags as they were)");
-		shortestLag = shortestLag_;
-		longestLag  = longestLag_;
-		install(std::move(law));
-	}
-	changed_.store(false, std::memory_order_release);
-	law_->beginStep(tPrev, t);
-	stepStart = tPrev;
-	stepEnd   = t;
-}
-
-void ContactKind::afterLoad()
-{
-	if (!(stepEnd > 0)) return;
-	std::lock_guard<std::mutex> lock(lawMutex_);
-	auto law = std::make_unique<core::ContactLaw>(params(), shortestLag, longestLag);
-	law->beginStep(stepStart, stepEnd);
-	install(std::move(law));
-	changed_.store(false, std::memory_order_release);
-}
-
-core::ContactLaw& ContactKind::law()
-{
-	// Under a log-time solver (stepSerial > 0) a change waits for its next step.
-	core::ContactLaw* ready = lawReady_.load(std::memory_order_acquire);
-	if (ready && (stepSerial > 0 || !changed_.load(std::memory_order_acquire))) return *ready;
-	std::lock_guard<std::mutex> lock(lawMutex_);
-	if (!law_ || (stepSerial == 0 && changed_.load(std::memory_order_acquire))) {
-		changed_.store(false, std::memory_order_release);
-		auto law = std::make_unique<core::ContactLaw>(params(), shortestLag, longestLag);
-		law->beginStep(28.0, 28.0);
-		install(std::move(law));
-	}
-	return *law_;
+	revision_.fetch_add(1, std::memory_order_acq_rel);
 }
 
 namespace {
@@ -135,7 +87,5 @@ void ContactKind::setTemperatureHistory(const std::vector<Real>& days, const std
 		throw std::invalid_argument(string("ContactKind.setTemperatureHistory refused, the old history kept: ") + e.what());
 	}
 }
-
-int ContactKind::chainSize() { return law().creep() ? int(law().creep()->size()) : 0; }
 
 } // namespace yade

@@ -82,7 +82,7 @@ namespace {
 	// kn, ks [N/m] of the state the contact is in, and for a sliding contact the slope of its shear
 	// force along the Coulomb cone, slide = dFs/d(opening) = -sign(Fs) tan(phi_res) kn [N/m].
 	// sticking: a sliding contact enters as sticking (the elastic predictor's tangent).
-	char contactTangent(const Interaction* I, Real& kn, Real& ks, Real& slide, bool sticking)
+	char contactTangent(Law2_ScGeom_SwellPhys_AgingSwelling& law2, const Interaction* I, Real& kn, Real& ks, Real& slide, bool sticking)
 	{
 		slide          = 0;
 		const auto* sp = dynamic_cast<const SwellPhys*>(I->phys.get());
@@ -92,12 +92,12 @@ namespace {
 			return 0;
 		}
 		using Mode   = core::ContactLaw::Mode;
-		const Mode m0 = sp->kind->law().mode(sp->state);
+		const Mode m0 = law2.lawFor(*sp->kind).mode(sp->state);
 		const Mode m  = sticking && m0 == Mode::Sliding ? Mode::Sticking : m0;
 		kn           = m == Mode::Open ? 0 : sp->state.kn;
 		ks           = (m == Mode::Intact || m == Mode::Sticking) ? sp->state.ks : 0;
 		if (m == Mode::Sliding)
-			slide = -(sp->state.trial.Fs > 0 ? 1 : -1) * std::tan(sp->kind->law().params().strength.residualFrictionAngle) * sp->state.kn;
+			slide = -(sp->state.trial.Fs > 0 ? 1 : -1) * std::tan(law2.lawFor(*sp->kind).params().strength.residualFrictionAngle) * sp->state.kn;
 		return char(m0);
 	}
 }
@@ -301,7 +301,7 @@ void ImplicitLogTimeSolver::assembleTangent(bool firstPass, bool exact)
 		const auto*        g = static_cast<const ScGeom*>(I->geom.get());
 		kScale += std::abs(static_cast<const NormShearPhys*>(I->phys.get())->kn);
 		Real       kn, ks, slide;
-		const char state = contactTangent(I, kn, ks, slide, S.mech[I->id1] || S.mech[I->id2]);
+		const char state = contactTangent(*law2, I, kn, ks, slide, S.mech[I->id1] || S.mech[I->id2]);
 		if (firstPass) changes += state != S.active[c], S.active[c] = state;
 		S.stiffness[2 * c] = kn, S.stiffness[2 * c + 1] = ks;
 		Real kA = kn, sA = ks; // into K

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "Ip2_ConcreteMat_ConcreteMat_SwellPhys.hpp"
+#include "SceneFunctors.hpp"
 #include "core/Validate.hpp"
 #include <cmath>
 #include <iostream>
@@ -75,30 +76,7 @@ void requireContactKinds(Scene* scene, const string& solverName)
 	// run or scene left is not this run's: the solver starts with no pending functor error.
 	takeFunctorError();
 	const string head = "swelldem: " + solverName + " cannot start: ";
-	// The Ip2s of the scene's InteractionLoops, found through YADE's Python interface (the
-	// dispatchers' layout is not declared in compat/). Raw pointers (the scene's dispatchers own the
-	// functors): a shared_ptr extracted from Python owns a reference to a Python object and must not
-	// outlive the GIL held here; released later, it can free that object without the GIL and abort.
-	std::vector<const Ip2_ConcreteMat_ConcreteMat_SwellPhys*> ip2s;
-	{
-		namespace bp         = boost::python;
-		PyGILState_STATE gil = PyGILState_Ensure();
-		try {
-			for (const auto& e : scene->engines) {
-				if (!e) continue;
-				bp::object engine(e);
-				if (!PyObject_HasAttrString(engine.ptr(), "physDispatcher")) continue;
-				bp::object functors = engine.attr("physDispatcher").attr("functors");
-				for (long i = 0; i < bp::len(functors); ++i) {
-					bp::extract<shared_ptr<Ip2_ConcreteMat_ConcreteMat_SwellPhys>> f(functors[i]);
-					if (f.check()) ip2s.push_back(f().get());
-				}
-			}
-		} catch (const bp::error_already_set&) {
-			PyErr_Clear(); // the engines cannot be read: the contacts' check below still applies
-		}
-		PyGILState_Release(gil);
-	}
+	const auto ip2s = sceneFunctors<Ip2_ConcreteMat_ConcreteMat_SwellPhys>(scene, "physDispatcher");
 	// The ConcreteMat materials of the bodies, with the first two bodies of each (a pair of one
 	// material needs two of its bodies).
 	std::map<const ConcreteMat*, std::vector<long>> bodiesOf;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "Law2_ScGeom_SwellPhys_AgingSwelling.hpp"
+#include "SceneFunctors.hpp"
 
 namespace yade {
 namespace core = swelldem::core;
@@ -12,22 +13,45 @@ namespace {
 void Law2_ScGeom_SwellPhys_AgingSwelling::beginContactStep(SwellPhys& p, const Vector3r& normal)
 {
 	core::ContactState& s = p.state;
-	p.kind->law().beginContactStep(p.geometry(), s);
+	lawFor(*p.kind).beginContactStep(p.geometry(), s);
 	p.kn = s.kn; // YADE's own members, for YADE's tools (time steppers, exporters)
 	p.ks = s.ks;
 	// The step's constant shear offset enters the incremental shear vector once.
 	p.shearForce += s.ks * s.duOffsetS * tangentOf(normal);
-	p.stepSerial = p.kind->stepSerial;
+	p.stepSerial = window.serial;
 }
 
-void Law2_ScGeom_SwellPhys_AgingSwelling::commit(SwellPhys& p) { p.kind->law().commit(p.geometry(), p.state); }
+void Law2_ScGeom_SwellPhys_AgingSwelling::setModes(bool atEquilibrium, bool fromStepStart)
+{
+	breaksAtEquilibrium = atEquilibrium;
+	shearFromStepStart  = fromStepStart;
+}
+
+void Law2_ScGeom_SwellPhys_AgingSwelling::commit(SwellPhys& p) { lawFor(*p.kind).commit(p.geometry(), p.state); }
 
 bool Law2_ScGeom_SwellPhys_AgingSwelling::breakIfOverloaded(SwellPhys& p)
 {
-	if (!p.kind->law().breakIfOverloaded(p.geometry(), p.state)) return false;
+	if (!lawFor(*p.kind).breakIfOverloaded(p.geometry(), p.state)) return false;
 #pragma omp atomic
-	++p.kind->breakEvents;
+	++nBreaks;
 	return true;
+}
+
+int Law2_ScGeom_SwellPhys_AgingSwelling::chainSize(const shared_ptr<ContactKind>& kind)
+{
+	if (!kind) throw std::invalid_argument("swelldem: Law2_ScGeom_SwellPhys_AgingSwelling.chainSize(kind = None): allowed: a ContactKind");
+	const core::ContactLaw& law = lawFor(*kind);
+	return law.creep() ? int(law.creep()->size()) : 0;
+}
+
+Law2_ScGeom_SwellPhys_AgingSwelling* sceneLaw(Scene* scene, const string& solverName)
+{
+	const auto found = sceneFunctors<Law2_ScGeom_SwellPhys_AgingSwelling>(scene, "lawDispatcher");
+	if (found.size() != 1)
+		throw std::invalid_argument("swelldem: " + solverName + " cannot start: the scene's InteractionLoops hold "
+		                            + std::to_string(found.size())
+		                            + " Law2_ScGeom_SwellPhys_AgingSwelling functors; allowed: exactly one (it owns the run's laws of the kinds)");
+	return found[0];
 }
 
 bool Law2_ScGeom_SwellPhys_AgingSwelling::go(shared_ptr<IGeom>& ig, shared_ptr<IPhys>& ip, Interaction* I)
@@ -42,10 +66,10 @@ bool Law2_ScGeom_SwellPhys_AgingSwelling::go(shared_ptr<IGeom>& ig, shared_ptr<I
 		p->normalForce = p->shearForce = Vector3r::Zero();
 		return true;
 	}
-	ContactKind& kind = *p->kind;
+	const ContactKind& kind = *p->kind;
 	try {
-		if (p->stepSerial != kind.stepSerial) {
-			if (kind.stepSerial == 0 && logTimeSolverPending(scene)) {
+		if (p->stepSerial != window.serial) {
+			if (window.serial == 0 && logTimeSolverPending(scene)) {
 				p->normalForce = p->shearForce = Vector3r::Zero();
 				return true;
 			}
@@ -56,8 +80,8 @@ bool Law2_ScGeom_SwellPhys_AgingSwelling::go(shared_ptr<IGeom>& ig, shared_ptr<I
 		const Vector3r      t         = tangentOf(geom->normal);
 		Vector3r            sh;
 		const core::ContactForces* f;
-		if (kind.shearFromStepStart) {
-			f  = &kind.law().updateFromStepStart(p->geometry(), s, -geom->penetrationDepth, geom->shearIncrement().dot(t), !kind.breaksAtEquilibrium);
+		if (shearFromStepStart) {
+			f  = &lawFor(kind).updateFromStepStart(p->geometry(), s, -geom->penetrationDepth, geom->shearIncrement().dot(t), !breaksAtEquilibrium);
 			sh = -f->Fs * t;
 		} else {
 			// Shear: YADE's incremental vector, carried into the current contact plane.
@@ -65,12 +89,10 @@ bool Law2_ScGeom_SwellPhys_AgingSwelling::go(shared_ptr<IGeom>& ig, shared_ptr<I
 			geom->rotate(sh);
 			sh -= s.ks * geom->shearIncrement();
 			const Real FsTrial = -sh.dot(t);
-			f                  = &kind.law().update(p->geometry(), s, -geom->penetrationDepth, FsTrial, !kind.breaksAtEquilibrium);
+			f                  = &lawFor(kind).update(p->geometry(), s, -geom->penetrationDepth, FsTrial, !breaksAtEquilibrium);
 			if (f->broken && FsTrial != 0) sh *= f->Fs / FsTrial; // slip beyond the Coulomb cone is permanent
 		}
 		if (f->broken && !wasBroken) {
-#pragma omp atomic
-			++kind.breakEvents;
 #pragma omp atomic
 			++nBreaks;
 		}

@@ -96,26 +96,20 @@ void LogTimeSolver::zeroVelocities(Scene* scene)
 		if (b) b->state->vel = Vector3r::Zero(), b->state->angVel = Vector3r::Zero();
 }
 
+void LogTimeSolver::findLaw()
+{
+	law2 = sceneLaw(scene, getClassName());
+	law2->setModes(true, shearFromStepStart);
+}
+
 void LogTimeSolver::refreshKinds()
 {
-	std::set<ContactKind*> found;
+	std::set<const ContactKind*> found;
 	const auto&            L = scene->interactions->linIntrs;
 	for (size_t i = 0; i < scene->interactions->currSize; ++i)
 		if (L[i]->isReal())
 			if (auto* p = dynamic_cast<SwellPhys*>(L[i]->phys.get())) found.insert(p->kind.get());
 	kinds.assign(found.begin(), found.end());
-	for (ContactKind* k : kinds) {
-		k->breaksAtEquilibrium = true;
-		k->shearFromStepStart  = shearFromStepStart;
-	}
-}
-
-long LogTimeSolver::breakEvents() const
-{
-	long n = 0;
-	for (ContactKind* k : kinds)
-		n += k->breakEvents;
-	return n;
 }
 
 long LogTimeSolver::breakOverloaded()
@@ -132,16 +126,16 @@ long LogTimeSolver::breakOverloaded()
 		for (size_t i = 0; i < scene->interactions->currSize; ++i) {
 			if (!L[i]->isReal()) continue;
 			if (auto* p = dynamic_cast<SwellPhys*>(L[i]->phys.get())) {
-				const Real r = p->kind->law().overload(p->geometry(), p->state);
+				const Real r = law2->lawFor(*p->kind).overload(p->geometry(), p->state);
 				if (r > most) most = r, worst = p;
 			}
 		}
-		return worst && Law2_ScGeom_SwellPhys_AgingSwelling::breakIfOverloaded(*worst) ? 1 : 0;
+		return worst && law2->breakIfOverloaded(*worst) ? 1 : 0;
 	}
 	for (size_t i = 0; i < scene->interactions->currSize; ++i) {
 		if (!L[i]->isReal()) continue;
 		if (auto* p = dynamic_cast<SwellPhys*>(L[i]->phys.get()))
-			if (Law2_ScGeom_SwellPhys_AgingSwelling::breakIfOverloaded(*p)) ++n;
+			if (law2->breakIfOverloaded(*p)) ++n;
 	}
 	return n;
 }
@@ -160,6 +154,7 @@ void LogTimeSolver::initialize()
 {
 	postLoad();
 	requireContactKinds(scene, getClassName());
+	findLaw();
 	for (const auto& b : scene->bodies->body)
 		if (b && (b->state->blockedDOFs & kNeed2D) != kNeed2D)
 			throw std::invalid_argument("swelldem: " + getClassName() + " is a 2D solver: body " + std::to_string(b->id)
@@ -174,7 +169,7 @@ void LogTimeSolver::initialize()
 	sessionStart = std::chrono::steady_clock::now();
 	wallBefore   = 0;
 	refreshKinds();
-	brokenSeen = breakEvents();
+	brokenSeen = law2->nBreaks;
 	heldPos.clear();
 	trackHeldBodies();
 	const string n = std::to_string(springBodies.size());
@@ -202,11 +197,7 @@ void LogTimeSolver::beginPhysicalStep()
 {
 	refreshKinds();
 	// Each kind's law is built for the whole analysis: its Kelvin chain spans the first step to the run's span.
-	const double shortest = times[1] - times[0], span = tEnd - tStart;
-	for (ContactKind* k : kinds) {
-		k->beginStep(shortest, span, times[step - 1], times[step]);
-		++k->stepSerial;
-	}
+	law2->laws.beginStep(kinds, times[1] - times[0], tEnd - tStart, times[step - 1], times[step]);
 	iterInStep = 0;
 	roundStart = 0;
 	zeroVelocities(scene);
@@ -222,6 +213,7 @@ bool LogTimeSolver::startIteration()
 	const string err = takeFunctorError();
 	if (!err.empty()) fail(err);
 	if (kindsStale) {
+		findLaw();
 		refreshKinds();
 		kindsStale = false;
 	}
@@ -338,7 +330,7 @@ LogTimeSolver::Balance LogTimeSolver::measureBalance()
 
 LogTimeSolver::StepOutcome LogTimeSolver::settleStep(const Balance& b, bool converged)
 {
-	const long breaks    = breakEvents();
+	const long breaks    = law2->nBreaks;
 	const bool newBreaks = breaks != brokenSeen;
 	brokenSeen           = breaks;
 	StepOutcome out      = StepOutcome::Continue;
@@ -382,7 +374,7 @@ void LogTimeSolver::commitPhysicalStep()
 	const auto& L = scene->interactions->linIntrs;
 	for (size_t i = 0; i < scene->interactions->currSize; ++i)
 		if (L[i]->isReal())
-			if (auto* p = dynamic_cast<SwellPhys*>(L[i]->phys.get())) Law2_ScGeom_SwellPhys_AgingSwelling::commit(*p);
+			if (auto* p = dynamic_cast<SwellPhys*>(L[i]->phys.get())) law2->commit(*p);
 	physTime = times[step];
 	stepIterations.push_back(iterInStep);
 	stepUnbalanced.push_back(unbalanced);

@@ -63,7 +63,7 @@ public:
 	  "Cumulative iteration (totalIterations) of each record of the unbalanced-force history (historyEvery) [-]")                                   \
 	X(std::vector<Real>, historyUnbalanced, std::vector<Real>(), swelldem_attr::Result,                                                                 \
 	  "Unbalanced-force ratio at each record of the history, at the iteration historyIteration of the same index [-]")                           \
-	X(long, brokenSeen, 0, swelldem_attr::Result, "Break events seen so far (sum over kinds) [-]")                                                     \
+	X(long, brokenSeen, 0, swelldem_attr::Result, "Break events seen so far (the law functor's nBreaks) [-]")                                                     \
 	X(long, roundStart, 0, swelldem_attr::Internal, "Iteration of the step at which the last round of breaks happened [-]")                          \
 	X(Real, forceScaleMax, 0.0, swelldem_attr::Internal, "Largest mean contact force of the run so far [N]")                                          \
 	X(Real, externalScale, 0.0, swelldem_attr::Internal, "Mean external load on the free bodies, measured at the step's first iteration [N]")        \
@@ -126,9 +126,10 @@ protected:
 	double            wallNow() const; // [s] of the run, sessions before an O.load included
 	static void       zeroVelocities(Scene* scene);
 	static const unsigned kNeed2D = State::DOF_Z | State::DOF_RX | State::DOF_RY;
-	std::vector<ContactKind*> kinds;              // the kinds of the scene's contacts, refreshed when contacts come or go
-	const char*               iterationName = "ADR"; // what one iteration is, for the progress lines
-	bool                      shearFromStepStart = false; // ContactKind.shearFromStepStart of the solver's kinds
+	std::vector<const ContactKind*>      kinds;                      // the kinds of the scene's contacts, refreshed when contacts come or go
+	Law2_ScGeom_SwellPhys_AgingSwelling* law2               = nullptr; // the scene's law functor (owns the run's laws), found at the start and after O.load
+	const char*                          iterationName      = "ADR";   // what one iteration is, for the progress lines
+	bool                                 shearFromStepStart = false;   // the law functor's mode this solver sets
 	/// What a solver adds to the progress line about its own iterations (not virtual: the vtable
 	/// must keep the size of the stock engine's, compat/abi_pairs.txt).
 	std::function<std::string()> progressDetail;
@@ -141,7 +142,7 @@ private:
 	void   beginPhysicalStep();
 	void   commitPhysicalStep();
 	void   refreshKinds();
-	long   breakEvents() const;
+	void   findLaw(); // law2, and the modes this solver sets on it
 	long   breakOverloaded();
 	void   controlCollider();
 	void   measureExternalScale(long nFree);
@@ -150,7 +151,7 @@ private:
 	void   recordHistory();
 	void   progressLine() const;
 	std::chrono::steady_clock::time_point  sessionStart = std::chrono::steady_clock::now();
-	bool                                   kindsStale   = true; // the list of kinds is not saved: made again after O.load
+	bool                                   kindsStale   = true; // the list of kinds and law2 are not saved: found again after O.load
 	std::unique_ptr<boost::python::object> stepHook_;           // null: no hook (holds a Python reference: released under the GIL)
 };
 

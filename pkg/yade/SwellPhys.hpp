@@ -49,7 +49,7 @@ public:
 	X(Real, length, 0.0, swelldem_attr::Setting, "Centre distance L of the stress-free configuration; kn = E A / L [m]")                                 \
 	X(Real, swellDispInf, -1.0, swelldem_attr::Setting,                                                                                                  \
 	  "Per-contact ultimate swelling displacement d_inf; < 0: the kind's ContactKind.swellDispInf [m]")                                                  \
-	X(long, stepSerial, -1, swelldem_attr::Result, "Physical step (ContactKind.stepSerial) the contact's step data belong to [-]")                      \
+	X(long, stepSerial, -1, swelldem_attr::Result, "Physical step (Law2_ScGeom_SwellPhys_AgingSwelling.stepSerial) the contact's step data belong to [-]")                      \
 	X(swelldem::core::ContactState, state, swelldem::core::ContactState(), swelldem_attr::Internal, "The contact's state (physics core) [-]")
 	SWELLDEM_CLASS(SwellPhys, FrictPhys,
 	               "Concrete contact of swelldem: aging viscoelastic (B3, solidification theory), swelling (Larive) and brittle. "
@@ -59,17 +59,11 @@ public:
 	SwellPhys() { createIndex(); }
 	virtual ~SwellPhys() { }
 	void postLoad();
-	/// What Python may set kind to (compat/Plugin.hpp): a ContactKind, and during a run one of its scene.
+	/// What Python may set kind to (compat/Plugin.hpp): a ContactKind.
 	void checkObject(const char* name, const shared_ptr<ContactKind>& value) const;
-	/// Another run on this contact's present state under `kind` (a test of a saved specimen).
-	void startAnotherRun(const boost::python::object& kind);
 	template <class C> static void pyMethods(C& cls)
 	{
 		using S = swelldem::core::ContactState;
-		cls.def("startAnotherRun", &SwellPhys::startAnotherRun, boost::python::arg("kind"),
-		        "Gives the contact `kind` for another run on its present state (a loading test of a saved specimen): forces, "
-		        "damage and creep history stay, the step data start afresh, so that the first physical step of kind's "
-		        "log-time solver sets the contact up (SwellPhys.kind itself takes only a kind of the running scene) [-].");
 		cls.add_property("kindName", &SwellPhys::kindName, "Name of the contact's kind [-]");
 		cls.add_property("swellingDispInf", &SwellPhys::effectiveSwellDispInf, "Ultimate swelling displacement in force (own or the kind's) [m]");
 		cls.add_property("fnMax", &SwellPhys::fnMax, "Tensile strength of the contact f_t A (inf when damage is off) [N]");

@@ -48,7 +48,6 @@ TEST_SPAN = 1e-4
 SDT_CYCLES = 5
 SDT_FRACTION = 0.4
 #: ContactKind attributes that are results of a run, not parameters (not copied to a test kind).
-_KIND_RESULTS = ("breakEvents", "stepSerial", "breaksAtEquilibrium", "shearFromStepStart", "shortestLag", "longestLag")
 
 
 def _bad(option, value, allowed):
@@ -176,7 +175,7 @@ def kinds_for_test(kinds):
     _, W = _yade()
     out = {}
     for kid, k in kinds.items():
-        attrs = {n: v for n, v in k.dict().items() if n not in _KIND_RESULTS}
+        attrs = k.dict()
         if attrs.get("behaviour") == "viscoelastic":
             attrs["behaviour"] = "aging-elastic"
         attrs["swelling"] = False
@@ -186,12 +185,12 @@ def kinds_for_test(kinds):
 
 
 def swap_kinds(new):
-    """Starts another run on every real SwellPhys contact of O under the kind of its kindId in
-    `new` (SwellPhys.startAnotherRun: state kept, step data set up by the test solver's first step)."""
+    """Gives every real SwellPhys contact of O the kind of its kindId in `new` (the contacts take up
+    their new kinds at the test solver's first step)."""
     yade, _ = _yade()
     for I in yade.Omega().interactions:
         if I.isReal and hasattr(I.phys, "kind"):
-            I.phys.startAnotherRun(new[I.phys.kind.kindId])
+            I.phys.kind = new[I.phys.kind.kindId]
 
 
 class _Loader:
@@ -378,12 +377,10 @@ def sdt_legs(deps, target_Pa, cycles=SDT_CYCLES):
 
 
 def load_copy(path):
-    """Loads a saved swelling state into O, takes its swelling solver out and swaps its contacts to
-    test kinds (run_test adds the test solver)."""
+    """Loads a saved swelling state into O and swaps its contacts to test kinds (run_test puts the
+    test solver in place of the swelling run's)."""
     yade, _ = _yade()
-    O = yade.Omega()
-    O.load(path)
-    O.engines = [e for e in O.engines if not hasattr(e, "stepHook")]
+    yade.Omega().load(path)
     swap_kinds(kinds_for_test(scene_kinds()))
 
 

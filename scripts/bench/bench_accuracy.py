@@ -98,7 +98,7 @@ def worker(a):
     sizes = {}
     for I in yade.Omega().interactions:  # Kelvin units of each kind's chain (per direction)
         if I.isReal and I.phys.kindName not in sizes:
-            sizes[I.phys.kindName] = int(I.phys.kind.chainSize())
+            sizes[I.phys.kindName] = int(scene.scene_law().chainSize(I.phys.kind))
     timing["chain_size"] = sizes
     timing.update(total_s=time.time() - t0, status=res["status"], n_particles=res["n_particles"],
                   n_contacts_by_kind=res["n_contacts_by_kind"], config=c, threads=a.threads)

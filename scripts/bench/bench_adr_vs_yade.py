@@ -181,7 +181,7 @@ def run_adr(tols, ref=None):
     wall = solve(probe)
     if solver.finished and not probe.done:
         print(f"note: the ADR committed its step on its own (round-off criterion) at ADR iteration {solver.iterInStep}")
-    assert all(I.phys.stepSerial == I.phys.kind.stepSerial for I in inters), "the step changed during the run"
+    assert all(I.phys.stepSerial == dem.scene_law().stepSerial for I in inters), "the step changed during the run"
     return probe, inters, engine_us(O.iter), wall, O.iter
 
 
@@ -202,7 +202,7 @@ def run_newton(step_data, ref):
         I.phys.kn, I.phys.ks, I.phys.duOffsetN, I.phys.duOffsetS = kn, ks, du, dus
     probe = Probe(TOLS, ref)
     wall = solve(probe)
-    assert all(I.phys.stepSerial == I.phys.kind.stepSerial for I in inters)
+    assert all(I.phys.stepSerial == dem.scene_law().stepSerial for I in inters)
     assert all(I.phys.kn == d[0] and I.phys.duOffsetN == d[2] for I, d in zip(inters, step_data)), "step data were reset"
     return probe, inters, engine_us(O.iter - 1), wall, O.iter - 1, moved
 

@@ -126,6 +126,7 @@ def stats(xs):
 def worker():
     import yade
     from yade import wrapper as W
+    from swelldem.dem import scene_law
     O = yade.Omega()
     assembly = C.make_assembly(args.n_discs, seed=args.seed)
     out = {"threads": O.numThreads, "loadavg_start": os.getloadavg(), "n_discs": len(assembly.r), "n_contacts": len(assembly.contacts), "per_iteration": {},
@@ -175,7 +176,7 @@ def worker():
             assert solver.step >= n, "part 2 expects one physical step per iteration"
             if rep == 0:
                 out["checks"].setdefault("steps_timed", {})[v] = n
-                out["checks"].setdefault("chain_size", {})[v] = inters[0].phys.kind.chainSize()
+                out["checks"].setdefault("chain_size", {})[v] = scene_law().chainSize(inters[0].phys.kind)
             for il, wall, adr in chunks:
                 step_samples[v]["iloop_us"].append(il)
                 step_samples[v]["adr_us"].append(adr)

@@ -92,7 +92,7 @@ def worker(a):
             asm = base if order == "packing" else meso.generate(seed=test.seed, width_mm=a.size_mm, height_mm=a.size_mm, order=order)
         k = O.addScene()
         O.switchToScene(k)
-        # one set of kinds and one solver a scene (build() prepares them anew): kinds hold step state
+        # one solver a scene (build() prepares it and the kinds anew)
         solvers[order] = scenario.build(test, assembly=asm, reset=False).solver
         O.run(21, True)  # set-up and warm-up (the collider's first runs)
         scenes[order] = k

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import options
+from .. import options, paper
 from ..meso import MesoParameters
 from . import scene as sc
 from .platens import facing_discs
@@ -160,14 +160,8 @@ def add_bars(assembly, yscene, lay, itz_kind):
     area = lay.thickness_m * b
     # kn = E_s A / L, with A set to the bar's section A_s below
     ip2.steel = contact_kind(STEEL, behaviour="elastic", young=lay.young, shear_ratio=0.3, damage=False)
-    itz = itz_kind
-    ip2.bond = contact_kind(BOND, behaviour=itz.behaviour, young=itz.young, shear_ratio=itz.shearRatio, damage=itz.damage,
-                            tensile_strength=itz.tensileStrength, q1=itz.q1, q2=itz.q2, q3=itz.q3, q4=itz.q4,
-                            kelvinUnitsPerDecade=itz.kelvinUnitsPerDecade, residualFrictionAngle=itz.residualFrictionAngle,
-                            # the ITZ's temperature, for creep at temperature (docs/temperature.md)
-                            temperatureDays=list(itz.temperatureDays), temperatures=list(itz.temperatures), thermalCreep=itz.thermalCreep,
-                            creepReferenceTemperature=itz.creepReferenceTemperature, creepUe=itz.creepUe, creepUr=itz.creepUr,
-                            creepUs=itz.creepUs)
+    # a full copy of the ITZ (its temperature too, for creep at temperature: docs/temperature.md), not swelling
+    ip2.bond = W.ContactKind(**dict(itz_kind.dict(), name=BOND, kindId=paper.STRUCTURE_KIND_IDS[BOND], swelling=False, swellDispInf=0.0))
     mat = W.ConcreteMat(steel=True, young=lay.young, label="steel")
     O.materials.append(mat)
     rr, n = lay.radius_m, lay.n_discs

@@ -60,6 +60,17 @@ def contact_kind(name, behaviour="elastic", young=30e9, b3="mortar", shear_ratio
     return W.ContactKind(**kw)
 
 
+def scene_law():
+    """The running scene's Law2_ScGeom_SwellPhys_AgingSwelling: the owner of what the run does with
+    its kinds (stepSerial, the step begun, chainSize(kind), nBreaks)."""
+    yade, W = _yade()
+    found = [f for e in yade.Omega().engines if hasattr(e, "lawDispatcher") for f in e.lawDispatcher.functors
+             if isinstance(f, W.Law2_ScGeom_SwellPhys_AgingSwelling)]
+    if len(found) != 1:
+        raise ValueError(f"swelldem: the scene holds {len(found)} Law2_ScGeom_SwellPhys_AgingSwelling functors; allowed: exactly one")
+    return found[0]
+
+
 def kind_attributes():
     """The names of ContactKind's attributes (settable by keyword or per kind from the command line)."""
     _, W = _yade()
