@@ -153,13 +153,13 @@ void LogTimeSolver::controlCollider()
 void LogTimeSolver::initialize()
 {
 	postLoad();
-	requireContactKinds(scene, getClassName());
-	findLaw();
 	for (const auto& b : scene->bodies->body)
 		if (b && (b->state->blockedDOFs & kNeed2D) != kNeed2D)
 			throw std::invalid_argument("swelldem: " + getClassName() + " is a 2D solver: body " + std::to_string(b->id)
 			                            + " must have z translation and x, y rotations blocked (State.blockedDOFs containing 'zXY'); "
 			                              "3D sphere packings are not supported");
+	requireContactKinds(scene, getClassName());
+	findLaw();
 	times = core::logTimes(tStart, tEnd, stepsPerDecade, std::vector<double>(extraTimes.begin(), extraTimes.end()));
 	zeroVelocities(scene);
 	scene->dt    = 1.0;
