@@ -5,6 +5,7 @@
 #include <exception>
 #include <string>
 
+#include "core/PairKind.hpp"
 #include "laguerre.hpp"
 #include "packing.hpp"
 
@@ -97,6 +98,19 @@ long swd_laguerre_rectangle(long n, const double* x, const double* y, const doub
   } catch (...) {
     return fail("swd_laguerre_rectangle: unknown error");
   }
+}
+
+long swd_pair_kinds(long m, const int* aggregate1, const int* aggregate2, int* kind) {
+  g_last_error.clear();
+  if (m < 0) return fail("swd_pair_kinds: m < 0");
+  if (m > 0 && (!aggregate1 || !aggregate2 || !kind)) return fail("swd_pair_kinds: null buffer");
+  for (long k = 0; k < m; ++k) {
+    swelldem::core::PairMaterial a, b;
+    a.aggregateId = aggregate1[k];
+    b.aggregateId = aggregate2[k];
+    kind[k] = int(swelldem::core::pairKind(a, b));
+  }
+  return m;
 }
 
 }  // extern "C"

@@ -63,6 +63,14 @@ SWD_API long swd_laguerre_rectangle(long n, const double* x, const double* y, co
                                     int* fi, int* fj, double* flen, double* fseg,
                                     double* cell_area, double* stats);
 
+/*
+ * Contact kind of m pairs of concrete particles from their aggregate ids (-1 mortar, >= 0 one
+ * coarse aggregate): kind[k] = 0 MORTAR, 1 ITZ or 2 AGG for the pair (aggregate1[k], aggregate2[k]),
+ * by the rule the plugin's Ip2 applies to the particles' materials (pkg/core/PairKind.hpp).
+ * Returns m or -1.
+ */
+SWD_API long swd_pair_kinds(long m, const int* aggregate1, const int* aggregate2, int* kind);
+
 #ifdef __cplusplus
 }
 #endif

@@ -24,23 +24,14 @@ struct ImplicitLinearSystem {
 	std::vector<char>                                  active;     // per contact: its core::ContactLaw::Mode
 	SpMat                                              K;
 	Eigen::CholmodDecomposition<SpMat, Eigen::Lower>   chol;
-	std::vector<Eigen::VectorXd>                       z; // K^-1 u of each kept low-rank column (lowRankKeys), for the factor in hand
+	std::vector<Eigen::VectorXd>                       z; // K^-1 u of each kept low-rank column (lowRankColumns), for the factor in hand
 	int                                                nEq = 0;
 	bool                                               haveFactor = false;
-	// A column pair (u, v) of the tangent J = K_factored + sum u v^T: a contact whose stiffness
-	// changed since the factor was made (type 0 normal, 1 shear: u = dk b, v = b) or a sliding
-	// contact's shear-normal coupling (type 2: u = slide bs, v = bn).
-	struct Column {
-		int  id1, id2, type;
-		Real value; // the change dk or the slope [N/m]
-		int  eq[6];
-		Real u[6], v[6];
-	};
 	// This iteration's: the real contacts, the discs in a mechanism, the columns, each contact's
 	// (kn, ks) in its current state and the contacts whose (kn, ks) differ from the factored ones
 	std::vector<const Interaction*> contacts;
 	std::vector<char>               mech;
-	std::vector<Column>             columns;
+	std::vector<LowRankColumn>      columns;
 	std::vector<Real>               stiffness;
 	long                            changed = 0;
 	std::vector<Real>               deltaDiag; // per equation, the diagonal change of the changed contacts
@@ -50,6 +41,21 @@ struct ImplicitLinearSystem {
 	{
 		for (int d = 0; d < 3; ++d)
 			eq[d] = dofOf[3 * I->id1 + d], eq[3 + d] = dofOf[3 * I->id2 + d];
+	}
+	void addColumn(const Interaction* I, int type, Real value, const Real* a, const Real* b)
+	{
+		LowRankColumn col { I->id1, I->id2, type, value, {}, {}, {} };
+		equationsOf(I, col.eq);
+		for (int k = 0; k < 6; ++k)
+			col.u[k] = value * a[k], col.v[k] = b[k];
+		columns.push_back(col);
+	}
+	// the index of entry (row, col) of the lower triangle in K's values
+	int slotOf(int row, int col) const
+	{
+		const int* inner = K.innerIndexPtr();
+		const int  lo = K.outerIndexPtr()[col], hi = K.outerIndexPtr()[col + 1];
+		return int(std::lower_bound(inner + lo, inner + hi, row) - inner);
 	}
 };
 
@@ -193,18 +199,44 @@ void ImplicitLogTimeSolver::choosePins()
 void ImplicitLogTimeSolver::numberEquations()
 {
 	// Equation numbering and sparsity pattern, remade when the contact graph or the held DOFs change.
-	ImplicitLinearSystem& S      = *sys;
-	const auto&           bodies = scene->bodies->body;
-	const auto&           contacts = S.contacts;
 	if (pinnedDofs.empty()) choosePins();
+	const std::vector<unsigned> masks = heldDofMasks();
+	if (sameEquations(masks)) return;
+	numberDofs(masks);
+	makePattern();
+	findSlots();
+	sys->chol.setMode(Eigen::CholmodSupernodalLLt);
+	sys->chol.analyzePattern(sys->K);
+	refactorSavedValues();
+	sys->active.assign(sys->contacts.size(), 0);
+	++analyses;
+}
+
+std::vector<unsigned> ImplicitLogTimeSolver::heldDofMasks() const
+{
+	const auto&           bodies = scene->bodies->body;
 	std::vector<unsigned> masks(bodies.size(), 0);
 	for (const auto& b : bodies)
 		if (b) masks[b->id] = b->state->blockedDOFs & (State::DOF_X | State::DOF_Y | State::DOF_RZ);
-	bool same = masks == S.dofMasks && contacts.size() == S.graph.size();
+	return masks;
+}
+
+bool ImplicitLogTimeSolver::sameEquations(const std::vector<unsigned>& masks) const
+{
+	const ImplicitLinearSystem& S        = *sys;
+	const auto&                 contacts = S.contacts;
+	bool                        same     = masks == S.dofMasks && contacts.size() == S.graph.size();
 	for (size_t c = 0; same && c < contacts.size(); ++c)
 		same = S.graph[c].first == contacts[c]->id1 && S.graph[c].second == contacts[c]->id2;
-	if (same) return;
-	S.dofMasks = masks;
+	return same;
+}
+
+void ImplicitLogTimeSolver::numberDofs(const std::vector<unsigned>& masks)
+{
+	// The pins are taken out after a first numbering, so that the equations keep the bodies' order.
+	ImplicitLinearSystem& S      = *sys;
+	const auto&           bodies = scene->bodies->body;
+	S.dofMasks                   = masks;
 	S.dofOf.assign(3 * bodies.size(), -1);
 	S.nEq = 0;
 	const unsigned axisBit[3] = { State::DOF_X, State::DOF_Y, State::DOF_RZ };
@@ -218,6 +250,13 @@ void ImplicitLogTimeSolver::numberEquations()
 	S.isRotation.clear();
 	for (size_t k = 0; k < S.dofOf.size(); ++k)
 		if (S.dofOf[k] >= 0) S.dofOf[k] = S.nEq++, S.isRotation.push_back(k % 3 == 2);
+}
+
+void ImplicitLogTimeSolver::makePattern()
+{
+	// Every diagonal entry is in the pattern, so that a DOF no contact holds can take kLoose.
+	ImplicitLinearSystem& S        = *sys;
+	const auto&           contacts = S.contacts;
 	S.graph.resize(contacts.size());
 	std::vector<Eigen::Triplet<double, int>> trip;
 	trip.reserve(contacts.size() * 21 + S.nEq);
@@ -236,30 +275,35 @@ void ImplicitLogTimeSolver::numberEquations()
 	S.K.resize(S.nEq, S.nEq);
 	S.K.setFromTriplets(trip.begin(), trip.end());
 	S.K.makeCompressed();
+}
+
+void ImplicitLogTimeSolver::findSlots()
+{
+	// Found once per pattern, so that assembling the tangent writes K's values without a search.
+	ImplicitLinearSystem& S        = *sys;
+	const auto&           contacts = S.contacts;
 	S.slots.assign(21 * contacts.size(), -1);
 	S.diagSlot.assign(S.nEq, -1);
-	auto slotOf = [&](int row, int col) {
-		const int* inner = S.K.innerIndexPtr();
-		const int  lo = S.K.outerIndexPtr()[col], hi = S.K.outerIndexPtr()[col + 1];
-		return int(std::lower_bound(inner + lo, inner + hi, row) - inner);
-	};
 	for (int e = 0; e < S.nEq; ++e)
-		S.diagSlot[e] = slotOf(e, e);
+		S.diagSlot[e] = S.slotOf(e, e);
 	for (size_t c = 0; c < contacts.size(); ++c) {
 		int eq[6];
 		S.equationsOf(contacts[c], eq);
 		for (int k = 0; k < 21; ++k) {
 			const int r = eq[kPairs.a[k]], s = eq[kPairs.b[k]];
-			if (r >= 0 && s >= 0) S.slots[21 * c + k] = slotOf(std::max(r, s), std::min(r, s));
+			if (r >= 0 && s >= 0) S.slots[21 * c + k] = S.slotOf(std::max(r, s), std::min(r, s));
 		}
 	}
-	S.chol.setMode(Eigen::CholmodSupernodalLLt);
-	S.chol.analyzePattern(S.K);
+}
+
+void ImplicitLogTimeSolver::refactorSavedValues()
+{
 	// A reloaded scene factors the values the saved run had factored, if its contacts are the same,
 	// so that it keeps or renews its factor exactly as the uninterrupted run.
-	std::vector<int> graph;
-	graph.reserve(2 * contacts.size());
-	for (const Interaction* I : contacts)
+	ImplicitLinearSystem& S = *sys;
+	std::vector<int>      graph;
+	graph.reserve(2 * S.contacts.size());
+	for (const Interaction* I : S.contacts)
 		graph.push_back(I->id1), graph.push_back(I->id2);
 	S.haveFactor = false;
 	if (graph == factoredGraph && factoredValues.size() == size_t(S.K.nonZeros())) {
@@ -274,80 +318,102 @@ void ImplicitLogTimeSolver::numberEquations()
 	} else
 		factoredValues.clear(), factoredStiffness.clear();
 	factoredGraph.swap(graph);
-	S.active.assign(contacts.size(), 0);
-	++analyses;
 }
 
 void ImplicitLogTimeSolver::assembleTangent(bool firstPass, bool exact)
 {
 	// K = sum over contacts of B^T diag(kn, ks) B with, over (x1, y1, rz1, x2, y2, rz2), normal row
 	// (-n, 0, n, 0) and shear row (-t, -r1, t, -r2), t = ez x n (the increments YADE's ScGeom gives
-	// the law). A sliding contact of a disc in a mechanism enters as sticking. Unless exact, a
-	// contact whose (kn, ks) changed since the factor was made enters with its factored ones, and the
-	// change as low-rank columns.
+	// the law). Unless exact, a contact whose (kn, ks) changed since the factor was made enters with
+	// its factored ones, and the change as low-rank columns.
 	ImplicitLinearSystem& S = *sys;
-	double*               v = S.K.valuePtr();
-	std::fill(v, v + S.K.nonZeros(), 0.0);
+	startAssembly();
 	const bool lowRank = !exact && S.haveFactor && factoredStiffness.size() == 2 * S.contacts.size();
 	long       changes = 0;
-	S.deltaDiag.assign(S.nEq, 0.0);
-	S.touched.clear();
-	S.columns.clear();
-	S.stiffness.resize(2 * S.contacts.size());
-	S.changed     = 0;
-	double kScale = 0; // mean step stiffness kn'' of the contacts
+	double     kScale  = 0; // mean step stiffness kn'' of the contacts
 	for (size_t c = 0; c < S.contacts.size(); ++c) {
-		const Interaction* I = S.contacts[c];
-		const auto*        g = static_cast<const ScGeom*>(I->geom.get());
-		kScale += std::abs(static_cast<const NormShearPhys*>(I->phys.get())->kn);
-		Real       kn, ks, slide;
-		const char state = contactTangent(*law2, I, kn, ks, slide, S.mech[I->id1] || S.mech[I->id2]);
+		kScale += std::abs(static_cast<const NormShearPhys*>(S.contacts[c]->phys.get())->kn);
+		const char state = addContact(c, lowRank);
 		if (firstPass) changes += state != S.active[c], S.active[c] = state;
-		S.stiffness[2 * c] = kn, S.stiffness[2 * c + 1] = ks;
-		Real kA = kn, sA = ks; // into K
-		const bool changedHere = lowRank && (kn != factoredStiffness[2 * c] || ks != factoredStiffness[2 * c + 1]);
-		if (kn == 0 && ks == 0 && !changedHere) continue;
-		const Vector3r& n  = g->normal;
-		const Real      r1 = g->radius1 - 0.5 * g->penetrationDepth, r2 = g->radius2 - 0.5 * g->penetrationDepth;
-		const Real      bn[6] = { -n[0], -n[1], 0, n[0], n[1], 0 };
-		const Real      bs[6] = { n[1], -n[0], -r1, -n[1], n[0], -r2 };
-		auto column = [&](int type, Real value, const Real* a, const Real* b) {
-			ImplicitLinearSystem::Column col { I->id1, I->id2, type, value, {}, {}, {} };
-			S.equationsOf(I, col.eq);
-			for (int k = 0; k < 6; ++k)
-				col.u[k] = value * a[k], col.v[k] = b[k];
-			S.columns.push_back(col);
-		};
-		if (changedHere) {
-			++S.changed;
-			const Real dkn = kn - factoredStiffness[2 * c], dks = ks - factoredStiffness[2 * c + 1];
-			if (dkn != 0) column(0, dkn, bn, bn), kA = factoredStiffness[2 * c];
-			if (dks != 0) column(1, dks, bs, bs), sA = factoredStiffness[2 * c + 1];
-			int eq[6];
-			S.equationsOf(I, eq);
-			for (int k = 0; k < 6; ++k)
-				if (eq[k] >= 0) {
-					if (S.deltaDiag[eq[k]] == 0) S.touched.push_back(eq[k]);
-					S.deltaDiag[eq[k]] += dkn * bn[k] * bn[k] + dks * bs[k] * bs[k];
-				}
-		}
-		if (slide != 0) column(2, slide, bs, bn);
-		const int* slot = &S.slots[21 * c];
-		for (int k = 0; k < 21; ++k)
-			if (slot[k] >= 0) v[slot[k]] += kA * bn[kPairs.a[k]] * bn[kPairs.b[k]] + sA * bs[kPairs.a[k]] * bs[kPairs.b[k]];
 	}
 	if (firstPass) activeChanges = changes;
+	double* v = S.K.valuePtr();
 	forEachSpring([&](int id, int axis, Real k) {
 		const int e = S.dofOf[3 * id + axis];
 		if (e >= 0) v[S.diagSlot[e]] += k;
 	});
-	// A DOF that no contact holds in the current state (a loose disc, a disc whose contacts are all
-	// open) moves under its own load as if one typical contact held it, so that it can close them.
 	kScale            = S.contacts.empty() ? 1.0 : kScale / S.contacts.size();
 	const Real kLoose = kScale > 0 ? kScale : 1.0;
-	std::vector<Real> raw(S.touched.size());
+	std::vector<Real> raw(S.touched.size()); // the changed contacts' diagonal entries before the shifts
 	for (size_t i = 0; i < S.touched.size(); ++i)
 		raw[i] = v[S.diagSlot[S.touched[i]]];
+	shiftDiagonal(kLoose);
+	addDiagonalColumns(raw, kLoose);
+}
+
+void ImplicitLogTimeSolver::startAssembly()
+{
+	ImplicitLinearSystem& S = *sys;
+	double*               v = S.K.valuePtr();
+	std::fill(v, v + S.K.nonZeros(), 0.0);
+	S.deltaDiag.assign(S.nEq, 0.0);
+	S.touched.clear();
+	S.columns.clear();
+	S.stiffness.resize(2 * S.contacts.size());
+	S.changed = 0;
+}
+
+char ImplicitLogTimeSolver::addContact(size_t c, bool lowRank)
+{
+	// A sliding contact of a disc in a mechanism enters as sticking. A contact carrying nothing in
+	// K nor in a column is left out. Returns the contact's state (core::ContactLaw::Mode).
+	ImplicitLinearSystem& S = *sys;
+	const Interaction*    I = S.contacts[c];
+	const auto*           g = static_cast<const ScGeom*>(I->geom.get());
+	Real                  kn, ks, slide;
+	const char            state = contactTangent(*law2, I, kn, ks, slide, S.mech[I->id1] || S.mech[I->id2]);
+	S.stiffness[2 * c] = kn, S.stiffness[2 * c + 1] = ks;
+	Real kA = kn, sA = ks; // into K
+	const bool changedHere = lowRank && (kn != factoredStiffness[2 * c] || ks != factoredStiffness[2 * c + 1]);
+	if (kn == 0 && ks == 0 && !changedHere) return state;
+	const Vector3r& n  = g->normal;
+	const Real      r1 = g->radius1 - 0.5 * g->penetrationDepth, r2 = g->radius2 - 0.5 * g->penetrationDepth;
+	const Real      bn[6] = { -n[0], -n[1], 0, n[0], n[1], 0 };
+	const Real      bs[6] = { n[1], -n[0], -r1, -n[1], n[0], -r2 };
+	if (changedHere) addStiffnessChange(c, kn, ks, bn, bs, kA, sA);
+	if (slide != 0) S.addColumn(I, 2, slide, bs, bn);
+	const int* slot = &S.slots[21 * c];
+	double*    v    = S.K.valuePtr();
+	for (int k = 0; k < 21; ++k)
+		if (slot[k] >= 0) v[slot[k]] += kA * bn[kPairs.a[k]] * bn[kPairs.b[k]] + sA * bs[kPairs.a[k]] * bs[kPairs.b[k]];
+	return state;
+}
+
+void ImplicitLogTimeSolver::addStiffnessChange(size_t c, Real kn, Real ks, const Real* bn, const Real* bs, Real& kA, Real& sA)
+{
+	// The factor stays valid for K with the factored (kA, sA); the change enters the solve exactly, as
+	// columns, and its diagonal is kept for the shifts' correction (addDiagonalColumns).
+	ImplicitLinearSystem& S = *sys;
+	const Interaction*    I = S.contacts[c];
+	++S.changed;
+	const Real dkn = kn - factoredStiffness[2 * c], dks = ks - factoredStiffness[2 * c + 1];
+	if (dkn != 0) S.addColumn(I, 0, dkn, bn, bn), kA = factoredStiffness[2 * c];
+	if (dks != 0) S.addColumn(I, 1, dks, bs, bs), sA = factoredStiffness[2 * c + 1];
+	int eq[6];
+	S.equationsOf(I, eq);
+	for (int k = 0; k < 6; ++k)
+		if (eq[k] >= 0) {
+			if (S.deltaDiag[eq[k]] == 0) S.touched.push_back(eq[k]);
+			S.deltaDiag[eq[k]] += dkn * bn[k] * bn[k] + dks * bs[k] * bs[k];
+		}
+}
+
+void ImplicitLogTimeSolver::shiftDiagonal(Real kLoose)
+{
+	ImplicitLinearSystem& S = *sys;
+	double*               v = S.K.valuePtr();
+	// A DOF that no contact holds in the current state (a loose disc, a disc whose contacts are all
+	// open) moves under its own load as if one typical contact held it, so that it can close them.
 	for (int e = 0; e < S.nEq; ++e) {
 		double& d = v[S.diagSlot[e]];
 		d += d > 0 ? regularization * d : kLoose;
@@ -360,18 +426,24 @@ void ImplicitLogTimeSolver::assembleTangent(bool firstPass, bool exact)
 	// 4.5e-8 of the opening at 1e-3, 8e-13 without).
 	for (int e = 0; e < S.nEq; ++e)
 		if (S.isRotation[e]) v[S.diagSlot[e]] *= 1 + rotationRegularization;
-	// The diagonal shifts above act on the whole diagonal, which the changes' columns do not see: a
-	// DOF whose changes leave it held by nothing (its last contact opened) has kScale in the exact
+}
+
+void ImplicitLogTimeSolver::addDiagonalColumns(const std::vector<Real>& raw, Real kLoose)
+{
+	// The diagonal shifts act on the whole diagonal, which the changes' columns do not see: a DOF
+	// whose changes leave it held by nothing (its last contact opened) has kScale in the exact
 	// tangent, not the factored stiffness minus the change, and one that a change holds again loses
 	// its kScale. A diagonal column brings J to the exact entry where the two differ by more than
 	// 1 % (without it J is singular, or far too stiff, along that DOF, and Newton stalls).
+	ImplicitLinearSystem& S = *sys;
+	const double*         v = S.K.valuePtr();
 	for (size_t i = 0; i < S.touched.size(); ++i) {
 		const int  e     = S.touched[i];
 		const Real d     = raw[i] + S.deltaDiag[e];
 		const Real exact = (d > 1e-9 * std::abs(raw[i]) ? d * (1 + regularization) : d + kLoose) * (S.isRotation[e] ? 1 + rotationRegularization : 1.0);
 		const Real lowRankEntry = v[S.diagSlot[e]] + S.deltaDiag[e];
 		if (!(std::abs(exact - lowRankEntry) > 1e-2 * std::abs(exact))) continue;
-		ImplicitLinearSystem::Column col { -1 - e, -1, 3, exact - lowRankEntry, { e, -1, -1, -1, -1, -1 }, {}, { 1, 0, 0, 0, 0, 0 } };
+		LowRankColumn col { -1 - e, -1, 3, exact - lowRankEntry, { e, -1, -1, -1, -1, -1 }, {}, { 1, 0, 0, 0, 0, 0 } };
 		col.u[0] = col.value;
 		S.columns.push_back(col);
 	}
@@ -408,7 +480,7 @@ void ImplicitLogTimeSolver::factor()
 	factoredStiffness = S.stiffness;
 	S.haveFactor      = true;
 	S.z.clear();
-	lowRankKeys.clear(), lowRankEquations.clear(), lowRankColumns.clear();
+	lowRankColumns.clear();
 }
 
 Eigen::VectorXd ImplicitLogTimeSolver::solveWithCoupling(const Eigen::VectorXd& r)
@@ -424,7 +496,7 @@ Eigen::VectorXd ImplicitLogTimeSolver::solveWithCoupling(const Eigen::VectorXd& 
 	long                  nSliding = 0;
 	for (const auto& col : S.columns)
 		nSliding += col.type == 2;
-	std::vector<const ImplicitLinearSystem::Column*> use;
+	std::vector<const LowRankColumn*> use;
 	for (const auto& col : S.columns)
 		if (col.type != 2 || nSliding <= maxSlidingExact) use.push_back(&col);
 	if (use.empty()) return du;
@@ -433,19 +505,20 @@ Eigen::VectorXd ImplicitLogTimeSolver::solveWithCoupling(const Eigen::VectorXd& 
 	// and saved, so that a reloaded scene rebuilds the same z (one solve each, in the same order);
 	// factor() empties them.
 	auto solveColumn = [&](size_t j) {
-		Eigen::VectorXd u = Eigen::VectorXd::Zero(S.nEq);
+		const LowRankColumn& col = lowRankColumns[j];
+		Eigen::VectorXd      u   = Eigen::VectorXd::Zero(S.nEq);
 		for (int k = 0; k < 6; ++k)
-			if (lowRankEquations[6 * j + k] >= 0) u[lowRankEquations[6 * j + k]] += lowRankColumns[7 * j + 1 + k];
+			if (col.eq[k] >= 0) u[col.eq[k]] += col.u[k];
 		if (j < S.z.size())
 			S.z[j] = S.chol.solve(u);
 		else
 			S.z.push_back(S.chol.solve(u));
 	};
-	while (S.z.size() < lowRankKeys.size() / 3)
+	while (S.z.size() < lowRankColumns.size())
 		solveColumn(S.z.size()); // a reloaded scene
 	std::map<std::tuple<int, int, int, Real>, size_t> kept;
 	for (size_t j = 0; j < S.z.size(); ++j)
-		kept.emplace(std::make_tuple(lowRankKeys[3 * j], lowRankKeys[3 * j + 1], lowRankKeys[3 * j + 2], lowRankColumns[7 * j]), j);
+		kept.emplace(std::make_tuple(lowRankColumns[j].id1, lowRankColumns[j].id2, lowRankColumns[j].type, lowRankColumns[j].value), j);
 	std::vector<size_t> index(use.size());
 	for (size_t i = 0; i < use.size(); ++i) {
 		const auto& col = *use[i];
@@ -455,21 +528,18 @@ Eigen::VectorXd ImplicitLogTimeSolver::solveWithCoupling(const Eigen::VectorXd& 
 			const size_t j     = index[i] = it->second;
 			Real         drift = 0, size = 0;
 			for (int k = 0; k < 6; ++k)
-				drift = std::max(drift, std::abs(col.u[k] - lowRankColumns[7 * j + 1 + k])), size = std::max(size, std::abs(col.u[k]));
+				drift = std::max(drift, std::abs(col.u[k] - lowRankColumns[j].u[k])), size = std::max(size, std::abs(col.u[k]));
 			if (!(drift > refactorTolerance * size)) continue;
-			std::copy(col.u, col.u + 6, &lowRankColumns[7 * j + 1]);
+			std::copy(col.u, col.u + 6, lowRankColumns[j].u);
 			solveColumn(j);
 			continue;
 		}
-		lowRankKeys.insert(lowRankKeys.end(), { col.id1, col.id2, col.type });
-		lowRankEquations.insert(lowRankEquations.end(), col.eq, col.eq + 6);
-		lowRankColumns.push_back(col.value);
-		lowRankColumns.insert(lowRankColumns.end(), col.u, col.u + 6);
+		lowRankColumns.push_back(col);
 		index[i] = S.z.size();
 		solveColumn(S.z.size());
 	}
 	const long m    = long(use.size());
-	auto vDot = [](const ImplicitLinearSystem::Column& col, const Eigen::VectorXd& x) {
+	auto vDot = [](const LowRankColumn& col, const Eigen::VectorXd& x) {
 		Real s = 0;
 		for (int k = 0; k < 6; ++k)
 			if (col.eq[k] >= 0) s += col.v[k] * x[col.eq[k]];

@@ -19,6 +19,34 @@ namespace yade {
 
 struct ImplicitLinearSystem; // the sparse matrix and its factor (Eigen + CHOLMOD), kept out of this header
 
+// A column pair (u, v) of the tangent J = K_factored + sum u v^T: a contact whose stiffness changed
+// since the factor was made (type 0 normal, 1 shear: u = dk b, v = b), a sliding contact's
+// shear-normal coupling (type 2: u = slide bs, v = bn) or a diagonal entry brought to the exact one
+// (type 3: id1 = -1 - equation). The columns whose K^-1 u is kept with the factor are saved with the
+// scene, so that a reloaded one solves the same columns in the same order.
+struct LowRankColumn {
+	int  id1, id2, type;
+	Real value; // the change dk or the slope [N/m]
+	int  eq[6]; // equations of (x1, y1, rz1, x2, y2, rz2), -1 where held
+	Real u[6], v[6];
+	template <class Archive> void serialize(Archive& ar, unsigned)
+	{
+		ar& boost::serialization::make_nvp("id1", id1);
+		ar& boost::serialization::make_nvp("id2", id2);
+		ar& boost::serialization::make_nvp("type", type);
+		ar& boost::serialization::make_nvp("value", value);
+		ar& boost::serialization::make_nvp("eq", eq);
+		ar& boost::serialization::make_nvp("u", u);
+		ar& boost::serialization::make_nvp("v", v);
+	}
+};
+
+} // namespace yade
+BOOST_CLASS_IMPLEMENTATION(yade::LowRankColumn, boost::serialization::object_serializable)
+BOOST_CLASS_TRACKING(yade::LowRankColumn, boost::serialization::track_never)
+
+namespace yade {
+
 class ImplicitLogTimeSolver : public LogTimeSolver {
 public:
 #define SWELLDEM_IMPLICIT_ATTRS(X)                                                                                                                             \
@@ -86,12 +114,8 @@ public:
 	  "Entries of the tangent that the current Cholesky factor was computed from (kept so that a reloaded scene factors the same) [N/m; N, N m with rotations]")       \
 	X(std::vector<Real>, factoredStiffness, std::vector<Real>(), swelldem_attr::Internal,                                                             \
 	  "kn, ks of each contact (in factoredGraph's order) in the tangent the current factor was computed from [N/m]")                            \
-	X(std::vector<int>, lowRankKeys, std::vector<int>(), swelldem_attr::Internal,                                                                     \
-	  "Kept low-rank columns of the current factor: body ids and type (0 normal, 1 shear change, 2 sliding coupling), 3 per column [-]")       \
-	X(std::vector<int>, lowRankEquations, std::vector<int>(), swelldem_attr::Internal,                                                                \
-	  "Kept low-rank columns: equations, 6 per column (-1 where held) [-]")                                                                       \
-	X(std::vector<Real>, lowRankColumns, std::vector<Real>(), swelldem_attr::Internal,                                                                \
-	  "Kept low-rank columns: the stiffness change or slope, then the 6 entries of u, 7 per column [N/m; N with rotations]")                   \
+	X(std::vector<LowRankColumn>, lowRankColumns, std::vector<LowRankColumn>(), swelldem_attr::Internal,                                           \
+	  "Low-rank columns whose K^-1 u is kept with the current factor, in the order they were solved [N/m; N with rotations]")                    \
 	X(std::vector<int>, factoredGraph, std::vector<int>(), swelldem_attr::Internal,                                                                    \
 	  "Body ids (2 per contact) of the contacts the tangent's sparsity pattern was made for [-]")                                                 \
 	X(bool, relaxing, false, swelldem_attr::Internal, "The step is in a dynamic relaxation phase [-]")                                                  \
@@ -120,7 +144,18 @@ private:
 	void                                  newtonStep();
 	// the parts of a Newton iteration, on sys
 	void                                  numberEquations();                  // equations, pattern and analysis when the graph changed
+	std::vector<unsigned>                 heldDofMasks() const;               // per body, its blocked x, y, rz
+	bool                                  sameEquations(const std::vector<unsigned>& masks) const; // the numbering still holds
+	void                                  numberDofs(const std::vector<unsigned>& masks); // dofOf, nEq, isRotation
+	void                                  makePattern();                      // K's sparsity pattern
+	void                                  findSlots();                        // where each contact's entries live in K
+	void                                  refactorSavedValues();              // a reloaded scene's factor
 	void                                  assembleTangent(bool firstPass, bool exact); // K's values, the low-rank columns; activeChanges
+	void                                  startAssembly();
+	char                                  addContact(size_t c, bool lowRank); // its entries and columns; its state
+	void                                  addStiffnessChange(size_t c, Real kn, Real ks, const Real* bn, const Real* bs, Real& kA, Real& sA);
+	void                                  shiftDiagonal(Real kLoose);         // regularization, loose DOFs, rotations
+	void                                  addDiagonalColumns(const std::vector<Real>& raw, Real kLoose);
 	bool                                  needsFactor(bool freshFactor) const; // K no longer within refactorTolerance and lowRankChanges of the factor
 	void                                  factor();
 	Eigen::Matrix<Real, Eigen::Dynamic, 1> solveWithCoupling(const Eigen::Matrix<Real, Eigen::Dynamic, 1>& r); // K^-1 r, Woodbury for the coupling

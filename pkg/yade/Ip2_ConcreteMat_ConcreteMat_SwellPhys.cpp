@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "Ip2_ConcreteMat_ConcreteMat_SwellPhys.hpp"
 #include "SceneFunctors.hpp"
+#include "core/PairKind.hpp"
 #include "core/Validate.hpp"
+#include <cstring>
 #include <cmath>
 #include <iostream>
 #include <map>
@@ -10,20 +12,26 @@ namespace yade {
 
 void Ip2_ConcreteMat_ConcreteMat_SwellPhys::postLoad() { swelldem::core::requirePositive("Ip2_ConcreteMat_ConcreteMat_SwellPhys.thickness [m]", thickness); }
 
+namespace {
+	using Ip2 = Ip2_ConcreteMat_ConcreteMat_SwellPhys;
+	// The kind slots in core::PairKind's order: the attribute each kind of pair takes its ContactKind from.
+	const std::pair<const char*, shared_ptr<ContactKind> Ip2::*> kSlots[swelldem::core::kPairKinds] = {
+		{ "mortar", &Ip2::mortar }, { "itz", &Ip2::itz }, { "agg", &Ip2::agg }, { "platen", &Ip2::platen }, { "steel", &Ip2::steel }, { "bond", &Ip2::bond }
+	};
+	swelldem::core::PairMaterial pairMaterial(const ConcreteMat& m) { return { m.aggregateId, m.platen, m.steel }; }
+}
+
 const char* Ip2_ConcreteMat_ConcreteMat_SwellPhys::slotName(const ConcreteMat& a, const ConcreteMat& b)
 {
-	// Platens first (a bar's end may touch one), then steel, then the concrete's own kinds.
-	if (a.platen || b.platen) return "platen";
-	if (a.steel && b.steel) return "steel";
-	if (a.steel || b.steel) return "bond";
-	if (a.isMortar() && b.isMortar()) return "mortar";
-	return !a.isMortar() && !b.isMortar() && a.aggregateId == b.aggregateId ? "agg" : "itz";
+	return kSlots[int(swelldem::core::pairKind(pairMaterial(a), pairMaterial(b)))].first;
 }
 
 const shared_ptr<ContactKind>& Ip2_ConcreteMat_ConcreteMat_SwellPhys::slot(const char* name) const
 {
-	const string n = name;
-	return n == "platen" ? platen : n == "steel" ? steel : n == "bond" ? bond : n == "mortar" ? mortar : n == "agg" ? agg : itz;
+	for (const auto& s : kSlots)
+		if (std::strcmp(s.first, name) == 0) return this->*s.second;
+	static const shared_ptr<ContactKind> none;
+	return none;
 }
 
 void Ip2_ConcreteMat_ConcreteMat_SwellPhys::go(const shared_ptr<Material>& m1, const shared_ptr<Material>& m2, const shared_ptr<Interaction>& I)

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-// Creates SwellPhys for contacts between ConcreteMat particles and assigns the contact kind:
-// mortar-mortar MORTAR; mortar-aggregate or two different aggregates ITZ; one aggregate AGG; with a
-// platen (a Wall of a ConcreteMat with platen set) PLATEN; two steel discs STEEL; steel and concrete BOND.
+// Creates SwellPhys for contacts between ConcreteMat particles and assigns the contact kind from the
+// slot that core::pairKind (core/PairKind.hpp) names for the two materials: mortar-mortar MORTAR;
+// mortar-aggregate or two different aggregates ITZ; one aggregate AGG; with a platen (a Wall of a
+// ConcreteMat with platen set) PLATEN; two steel discs STEEL; steel and concrete BOND.
 #pragma once
 #include "ConcreteMat.hpp"
 #include "SwellPhys.hpp"
@@ -33,7 +34,7 @@ public:
 	void        go(const shared_ptr<Material>& m1, const shared_ptr<Material>& m2, const shared_ptr<Interaction>& I) override;
 	void        postLoad();
 	template <class C> static void pyMethods(C&) { }
-	/// The kind slot (the attribute's name) of the contacts between particles of materials a and b.
+	/// The kind slot (the attribute's name) of the contacts between particles of materials a and b (core::pairKind).
 	static const char* slotName(const ConcreteMat& a, const ConcreteMat& b);
 	/// The slot's kind, or null.
 	const shared_ptr<ContactKind>& slot(const char* name) const;

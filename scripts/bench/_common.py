@@ -15,11 +15,12 @@ REPO_DIR = os.path.dirname(os.path.dirname(BENCH_DIR))
 if os.path.join(REPO_DIR, "py") not in sys.path:
     sys.path.insert(0, os.path.join(REPO_DIR, "py"))
 LAUNCHER = os.path.join(REPO_DIR, "scripts", "yade-swelldem")
+from swelldem import paper  # noqa: E402
 
 # Discs per mm^2 of swelldem.meso's default packing (997 discs on 25 x 25 mm, seed 1).
 DISCS_PER_MM2 = 1.595
 # Paper Table 3.2: d_inf = eps_inf x 2 R_mean = 1000e-6 x 2 x 0.397 mm.
-D_INF_PAPER_M = 0.794e-6
+D_INF_PAPER_M = paper.EPS_INF * 2 * paper.TABLE_3_2_R_MEAN
 
 
 def side_mm_for(n_discs):
@@ -57,7 +58,7 @@ def build_scene(a, law, kinds=None, integrator=None, extra_engines=(), radius_sc
         mats += [W.ConcreteMat(young=60e9, poisson=0.2, density=2600, aggregateId=g) for g in groups]
         index = {g: k + 1 for k, g in enumerate(groups)}
         material_of = [index.get(int(g), 0) for g in a.aggregate_id]
-        ip2 = W.Ip2_ConcreteMat_ConcreteMat_SwellPhys(mortar=kinds["MORTAR"], itz=kinds["ITZ"], agg=kinds["AGG"])
+        ip2 = dem.concrete_ip2(kinds)
         law2 = W.Law2_ScGeom_SwellPhys_AgingSwelling()
     elif law == "stock":
         mats, material_of = [W.FrictMat(young=30e9, poisson=0.2, density=2400, frictionAngle=math.pi / 2 - 1e-9)], None

@@ -43,7 +43,6 @@ REPO = os.path.dirname(os.path.dirname(BENCH_DIR))
 sys.path.insert(0, os.path.join(REPO, "py"))
 from swelldem import options, paper  # noqa: E402
 LAUNCHER = os.path.join(REPO, "scripts", "yade-swelldem")
-KINDS = ("MORTAR", "ITZ", "AGG")
 
 DEFAULT = {"steps_per_decade": 10, "tolerance": 1e-4, "kelvin_units_per_decade": 1.0}
 REFERENCE = {"steps_per_decade": 40, "tolerance": 1e-6, "kelvin_units_per_decade": 2.0}
@@ -128,7 +127,7 @@ def run_one(a, scen, run_dir, c):
 
 def final_values(res):
     eps = [(x + y) / 2 for x, y in zip(res["swelling_strain_x"], res["swelling_strain_y"])]
-    q = {k: (res["per_kind"][k]["fn_p05_kN"][-1], res["per_kind"][k]["fn_p95_kN"][-1]) for k in KINDS}
+    q = {k: (res["per_kind"][k]["fn_p05_kN"][-1], res["per_kind"][k]["fn_p95_kN"][-1]) for k in paper.KIND_NAMES}
     return eps, q
 
 
@@ -150,7 +149,7 @@ def errors(res, ref):
             if math.isfinite(x) and math.isfinite(xr) and xr != 0:
                 hist.append(abs(x - xr) / abs(xr))
     e["strain_history"] = max(hist)
-    for k in KINDS:
+    for k in paper.KIND_NAMES:
         scale = max(abs(q_r[k][0]), abs(q_r[k][1]))
         e[f"{k}_p05"] = abs(q[k][0] - q_r[k][0]) / scale if scale > 0 else 0.0
         e[f"{k}_p95"] = abs(q[k][1] - q_r[k][1]) / scale if scale > 0 else 0.0
@@ -159,7 +158,7 @@ def errors(res, ref):
     if res.get("damage"):
         # broken contacts: difference of the kind's broken fraction, in percentage points; one point
         # weighs as 1 % in 'max' (a crack pattern has no natural relative error)
-        for k in KINDS:
+        for k in paper.KIND_NAMES:
             n, n_r = res["n_contacts_by_kind"][k], ref["n_contacts_by_kind"][k]
             if n and n_r:
                 e[f"{k}_broken"] = abs(res["per_kind"][k]["broken"][-1] / n - ref["per_kind"][k]["broken"][-1] / n_r)
@@ -215,18 +214,18 @@ def load_row(run_dir, label, c):
 def table(tag, rows):
     damage = any("broken_max" in r["errors"] for r in rows)
     head = ("| run | N | tol | Kelvin/dec | steps | ADR it | wall s | strain % | strain hist % | " +
-            " | ".join(f"{k} p05 % | {k} p95 %" for k in KINDS) +
+            " | ".join(f"{k} p05 % | {k} p95 %" for k in paper.KIND_NAMES) +
             (" | broken M / I / A % | broken error (points) " if damage else "") + " | max % |")
     lines = [f"### {tag}", "", head, "|" + "---|" * (head.count("|") - 1)]
     for r in rows:
         c, e = r["config"], r["errors"]
         extra = ""
         if damage:
-            extra = (" | " + " / ".join(f"{100 * r['final']['broken'][k]:.1f}" for k in KINDS) +
+            extra = (" | " + " / ".join(f"{100 * r['final']['broken'][k]:.1f}" for k in paper.KIND_NAMES) +
                      f" | {100 * e.get('broken_max', 0):.1f}")
         lines.append(f"| {r['label']} | {c['steps_per_decade']:g} | {c['tolerance']:.0e} | {c['kelvin_units_per_decade']:g} | "
                      f"{r['steps']} | {r['iterations']} | {r['wall_s']:.1f} | {fmt_e(e['strain'])} | {fmt_e(e['strain_history'])} | " +
-                     " | ".join(f"{fmt_e(e[k + '_p05'])} | {fmt_e(e[k + '_p95'])}" for k in KINDS) + extra + f" | **{fmt_e(e['max'])}** |")
+                     " | ".join(f"{fmt_e(e[k + '_p05'])} | {fmt_e(e[k + '_p95'])}" for k in paper.KIND_NAMES) + extra + f" | **{fmt_e(e['max'])}** |")
     return "\n".join(lines)
 
 
@@ -338,7 +337,7 @@ def driver(a):
         for r in rows:
             eps, q = final_values(r["res"])
             r["final"] = {"strain": eps[-1], "quantiles_kN": q,
-                          "broken": {k: r["res"]["per_kind"][k]["broken"][-1] / max(r["res"]["n_contacts_by_kind"][k], 1) for k in KINDS}}
+                          "broken": {k: r["res"]["per_kind"][k]["broken"][-1] / max(r["res"]["n_contacts_by_kind"][k], 1) for k in paper.KIND_NAMES}}
             del r["res"]
         all_rows[tag] = rows
         summary["scenarios"][tag] = {"rows": rows, "recommended": rec, "n_particles": rows[0]["n_particles"]}

@@ -57,7 +57,7 @@ ap.add_argument("--gsts-interval", type=int, default=1, help="GlobalStiffnessTim
 ap.add_argument("--repeat", type=int, default=3, help="solve both this many times; timings are medians")
 ap.add_argument("--threads", type=int, default=1, help="only when started from plain python3: -j of the relaunch")
 ap.add_argument("--out", default=os.path.join(C.REPO_DIR, "out", "bench", "adr_vs_yade.json"))
-from swelldem import options  # noqa: E402  (_common put py/ on the path)
+from swelldem import options, paper  # noqa: E402  (_common put py/ on the path)
 
 with options.refuse_bad("bench_adr_vs_yade.py"):  # every option before any work (NaN, infinity), exit 2
     args = ap.parse_args(sys.argv[1:])
@@ -96,8 +96,8 @@ rng = random.Random(args.seed)
 if args.swell == "half":
     swell_mask = [rng.random() < 0.5 for _ in range(n_c)]
 else:
-    swell_mask = [int(k) == 0 for k in assembly.kind]
-YOUNG = {"MORTAR": 25e9, "ITZ": 15e9, "AGG": 60e9}
+    swell_mask = [int(k) == paper.MORTAR for k in assembly.kind]
+YOUNG = dict(zip(paper.KIND_NAMES, (25e9, 15e9, paper.AGGREGATE_YOUNG)))
 
 
 def kinds():
@@ -275,7 +275,7 @@ fn_abs = [abs(f) for f in fn_a]
 single = [f and n < 2 for f, n in zip(free, n_contacts_of)]
 summary = {
     "n_discs": len(ids), "n_free": sum(free), "n_contacts": n_c, "n_swelling_contacts": n_swelling,
-    "contacts_by_kind": {k: sum(1 for v in assembly.kind if int(v) == i) for i, k in enumerate(("MORTAR", "ITZ", "AGG"))},
+    "contacts_by_kind": {k: sum(1 for v in assembly.kind if int(v) == i) for i, k in enumerate(paper.KIND_NAMES)},
     "swell": args.swell, "aggregate_fraction": args.aggregate_fraction, "seed": args.seed, "young_Pa": YOUNG,
     "duOffsetN_max_m": max(d[2] for d in step_data), "check_every": args.check_every, "threads": O.numThreads,
     "ref_tol": args.ref_tol, "max_displacement_m": disp_scale, "compared_discs": sum(compared),

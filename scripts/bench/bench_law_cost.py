@@ -53,7 +53,7 @@ ap.add_argument("--chunks", type=int, default=10, help="timed chunks per build; 
 ap.add_argument("--threads", type=int, nargs="+", default=[1, 2])
 ap.add_argument("--out", default=os.path.join(C.REPO_DIR, "out", "bench", "law_cost.json"))
 ap.add_argument("--worker", action="store_true", help="internal: measure in this YADE process, print JSON")
-from swelldem import options  # noqa: E402  (_common put py/ on the path)
+from swelldem import options, paper  # noqa: E402  (_common put py/ on the path)
 
 with options.refuse_bad("bench_law_cost.py"):  # every option before any work (NaN, infinity), exit 2
     args = ap.parse_args(sys.argv[1:])
@@ -78,8 +78,8 @@ def kinds_for(variant):
                                      tensile_strength=4e6) for name, E in YOUNG.items()}
 
 
-YOUNG = {"MORTAR": 25e9, "ITZ": 15e9, "AGG": 60e9}
-YOUNG_BY_ID = {0: YOUNG["MORTAR"], 1: YOUNG["ITZ"], 2: YOUNG["AGG"]}
+YOUNG = dict(zip(paper.KIND_NAMES, (25e9, 15e9, paper.AGGREGATE_YOUNG)))
+YOUNG_BY_ID = {paper.KIND_IDS[name]: E for name, E in YOUNG.items()}
 
 
 def build(assembly, variant, integrator=None):

@@ -145,7 +145,7 @@ def main():
         ad, im = row["adr"], row["implicit"]
 
         def broken(r):
-            return "/".join(str(r["per_kind"][k]["broken"][-1]) for k in ("MORTAR", "ITZ", "AGG")) if r["per_kind"] else "-"
+            return "/".join(str(r["per_kind"][k]["broken"][-1]) for k in paper.KIND_NAMES) if r["per_kind"] else "-"
         lines.append(f"| {row['case']} | {im['n_particles']} | {ad['wall_s']:.1f} | {im['wall_s']:.1f} | {row.get('wall_ratio', float('nan')):.1f} | "
                      f"{ad['iterations']} | {im['iterations']} | {ad['peak_MB']:.0f} / {im['peak_MB']:.0f} | "
                      f"{row.get('force_agreement', float('nan')):.1e} | {row.get('strain_agreement', float('nan')):.1e} | "

@@ -248,6 +248,56 @@ def test_to_yade_errors(concrete_scene):
     assert "swelling is False" in e["gel_on_non_swelling"]
 
 
+# Which kind a pair of particles makes, as ConcreteMat's and the Ip2's docstrings state it (written
+# out here, not computed): platens first, then steel, then mortar / one aggregate / an interface.
+PAIR_MATERIALS = {"mortar": {"aggregateId": -1}, "aggregate0": {"aggregateId": 0}, "aggregate1": {"aggregateId": 1},
+                  "steel": {"steel": True}, "platen": {"platen": True}}
+CONCRETE_PAIR_KIND = {("mortar", "mortar"): "MORTAR", ("mortar", "aggregate0"): "ITZ", ("mortar", "aggregate1"): "ITZ",
+                      ("aggregate0", "aggregate0"): "AGG", ("aggregate0", "aggregate1"): "ITZ", ("aggregate1", "aggregate1"): "AGG"}
+
+
+def expected_pair_kind(a, b):
+    if "platen" in (a, b):
+        return "PLATEN"
+    if (a, b) == ("steel", "steel"):
+        return "STEEL"
+    if "steel" in (a, b):
+        return "BOND"
+    return CONCRETE_PAIR_KIND[(a, b)]
+
+
+PAIR_SCRIPT = r"""
+import itertools, yade
+from yade import wrapper as W
+from swelldem import dem, paper
+mats = %r
+names = list(mats)
+pairs = list(itertools.combinations_with_replacement(names, 2))
+materials = [W.ConcreteMat(young=30e9, poisson=0.2, density=2400, **mats[n]) for n in names]
+R = 0.5e-3
+x = [4 * R * k + d for k in range(len(pairs)) for d in (0.0, 2 * R)]
+material_of = [names.index(n) for p in pairs for n in p]
+slots = {name.lower(): dem.contact_kind(name) for name in (*paper.KIND_NAMES, *paper.STRUCTURE_KIND_IDS)}
+ip2 = W.Ip2_ConcreteMat_ConcreteMat_SwellPhys(**slots)
+ids, inters = dem.build_scene(x, [0.0] * len(x), [R] * len(x), materials, ip2, W.Law2_ScGeom_SwellPhys_AgingSwelling(), None,
+                              material_of=material_of, contacts=[(2 * k, 2 * k + 1) for k in range(len(pairs))], collider=False)
+dump([[a, b, I.phys.kindName, I.phys.kindId] for (a, b), I in zip(pairs, inters)])
+""" % (PAIR_MATERIALS,)
+
+
+def test_a_pair_gets_one_kind_from_the_ip2_and_from_the_generator(yade_run):
+    made = yade_run(PAIR_SCRIPT, timeout=300)
+    assert len(made) == 15
+    ids = {**paper.KIND_IDS, **paper.STRUCTURE_KIND_IDS}
+    for a, b, name, kind_id in made:
+        want = expected_pair_kind(a, b)
+        assert (name, kind_id) == (want, ids[want]), (a, b)
+        if (a, b) in CONCRETE_PAIR_KIND:   # the generator knows concrete particles only
+            agg = np.array([PAIR_MATERIALS[a]["aggregateId"], PAIR_MATERIALS[b]["aggregateId"]])
+            assert meso.contact_kinds([0], [1], agg).tolist() == [ids[want]], (a, b)
+            assert meso.contact_kinds([1], [0], agg).tolist() == [ids[want]], (b, a)
+
+
 def test_without_the_plugin_is_a_clear_error(tmp_path):
     """Plain Debian yade (no overlay prefix): the plugin classes are missing."""
     script = tmp_path / "s.py"

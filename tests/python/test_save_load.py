@@ -182,9 +182,9 @@ while not solver.finished:   # to an iteration of a cracking step that leaves lo
     O.run(1, True)
     if solver.iterInStep > 1 and solver.activeChanges > 0:
         O.save(folder + "/mid.xml")   # the kept columns are internal: read them from the saved file
-        m = re.search(r"<lowRankKeys>\s*<count>(\d+)</count>", open(folder + "/mid.xml").read())
-        if m and int(m.group(1)) >= 3:
-            held = {"columns": int(m.group(1)) // 3, "iterInStep": solver.iterInStep, "step": solver.step}
+        m = re.search(r"<lowRankColumns[^>]*>\s*<count>(\d+)</count>", open(folder + "/mid.xml").read())
+        if m and int(m.group(1)) >= 1:
+            held = {"columns": int(m.group(1)), "iterInStep": solver.iterInStep, "step": solver.step}
             break
 while not solver.finished:
     O.run(200, True)

@@ -132,8 +132,7 @@ def to_yade(assembly, kinds, solver, reset=True, density=2400.0, young=30e9, poi
     aggs = [W.ConcreteMat(young=young, poisson=poisson, density=density, aggregateId=k, label=f"aggregate{k}")
             for k in range(assembly.n_aggregates)]
     fixed = () if fixed is None else fixed
-    ip2 = W.Ip2_ConcreteMat_ConcreteMat_SwellPhys(mortar=kinds.get("MORTAR"), itz=kinds.get("ITZ"), agg=kinds.get("AGG"),
-                                                  thickness=float(assembly.thickness_m), cohesive=True)
+    ip2 = sc.concrete_ip2(kinds, thickness=float(assembly.thickness_m), cohesive=True)
     # The assembly's contacts: bonded, stress-free at their initial distance, facet area from Laguerre.
     contacts = np.asarray(assembly.contacts, dtype=np.int64).reshape(-1, 2)
     try:

@@ -71,6 +71,18 @@ def scene_law():
     return found[0]
 
 
+def concrete_ip2(kinds, **attrs):
+    """An Ip2_ConcreteMat_ConcreteMat_SwellPhys with each ContactKind of `kinds` (a dict keyed by the kind
+    names of swelldem.paper, KIND_NAMES and STRUCTURE_KIND_IDS) in its slot of that kind (the name in
+    lower case: MORTAR -> mortar), and the further Ip2 attributes `attrs`; a kind not given stays None."""
+    _, W = _yade()
+    known = (*paper.KIND_NAMES, *paper.STRUCTURE_KIND_IDS)
+    unknown = sorted(set(kinds) - set(known))
+    if unknown:
+        raise ValueError(f"swelldem: kind names {unknown} are out of range; allowed: {', '.join(known)}")
+    return W.Ip2_ConcreteMat_ConcreteMat_SwellPhys(**{name.lower(): kind for name, kind in kinds.items()}, **attrs)
+
+
 def kind_attributes():
     """The names of ContactKind's attributes (settable by keyword or per kind from the command line)."""
     _, W = _yade()

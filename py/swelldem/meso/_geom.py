@@ -44,6 +44,8 @@ def lib():
         handle.swd_laguerre_rectangle.argtypes = [
             ctypes.c_long, _dp, _dp, _dp, ctypes.c_double, ctypes.c_double, ctypes.c_long,
             _ip, _ip, _dp, _dp, _dp, _dp]
+        handle.swd_pair_kinds.restype = ctypes.c_long
+        handle.swd_pair_kinds.argtypes = [ctypes.c_long, _ip, _ip, _ip]
         _LIB = handle
     return _LIB
 
@@ -127,3 +129,16 @@ def laguerre_rectangle(x, y, r, width, height):
         stats[k] = int(stats[k])
     return {"cell_area": area[:n].copy(), "i": fi[:m].copy(), "j": fj[:m].copy(),
             "length": fl[:m].copy(), "segment": fs[:4 * m].reshape(m, 4).copy(), "stats": stats}
+
+
+def pair_kinds(aggregate1, aggregate2):
+    """Contact kind (0 MORTAR, 1 ITZ, 2 AGG; int8) of the pairs of concrete particles with these
+    aggregate ids (-1 mortar), by the plugin's Ip2 rule (pkg/core/PairKind.hpp)."""
+    a = np.ascontiguousarray(aggregate1, dtype=np.int32)
+    b = np.ascontiguousarray(aggregate2, dtype=np.int32)
+    if a.shape != b.shape or a.ndim != 1:
+        raise ValueError("aggregate1 and aggregate2 must be 1-D arrays of the same length")
+    kind = np.empty(len(a), dtype=np.int32)
+    if lib().swd_pair_kinds(len(a), _ptr(a, _ip), _ptr(b, _ip), _ptr(kind, _ip)) < 0:
+        _raise()
+    return kind.astype(np.int8)

@@ -15,7 +15,7 @@ import numpy as np
 
 from . import _geom
 from .aggregates import draw_aggregates, place_aggregates
-from .assembly import AGG, AGGREGATE_MATERIAL, ITZ, MORTAR, Assembly
+from .assembly import AGGREGATE_MATERIAL, Assembly
 from .params import MesoParameterError, MesoParameters
 
 MM = 1e-3  # metres per millimetre
@@ -57,12 +57,11 @@ def label_discs(x, y, r, polygons, rule="centre"):
 
 
 def contact_kinds(i, j, aggregate_id):
-    """MORTAR (0) for mortar-mortar, AGG (2) for two discs of one aggregate, else ITZ (1)."""
-    ai, aj = aggregate_id[i], aggregate_id[j]
-    kind = np.full(len(i), ITZ, dtype=np.int8)
-    kind[(ai < 0) & (aj < 0)] = MORTAR
-    kind[(ai >= 0) & (ai == aj)] = AGG
-    return kind
+    """Kind of the contacts (i, j): MORTAR (0) for mortar-mortar, AGG (2) for two discs of one
+    aggregate, else ITZ (1); decided by the compiled rule the plugin's Ip2 applies to the discs'
+    materials (pkg/core/PairKind.hpp), so that a scene's contacts get the assembly's kinds."""
+    aggregate_id = np.asarray(aggregate_id)
+    return _geom.pair_kinds(aggregate_id[np.asarray(i)], aggregate_id[np.asarray(j)])
 
 
 def _hilbert_index(gx, gy, bits):
