@@ -34,7 +34,7 @@ SERIES = ("fn_p05_kN", "fn_p95_kN", "broken")
 STALE_AFTER_S = 600.0
 
 
-#: Keys that results.json files written before their present names hold: old name -> name.
+#: results.json keys under the names that earlier versions of swelldem wrote: old name -> present name.
 RENAMED_KEYS = {"adr_iterations": "iterations", "adr_iterations_per_step": "iterations_per_step"}
 
 
