@@ -21,7 +21,7 @@ import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "py"))
 
-from swelldem import options, residual, scenario  # noqa: E402
+from swelldem import options, report, residual, scenario  # noqa: E402
 
 ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter)
 scenario.add_arguments(ap)
@@ -83,8 +83,7 @@ if not args.skip_swelling:
     os.makedirs(test.out, exist_ok=True)
     swell = scenario.run_or_exit(test, "residual_properties.py", extra_times=ages, after_step=saver)
 else:
-    with open(os.path.join(test.out, "results.json")) as f:
-        swell = json.load(f)
+    swell = report.load_results(os.path.join(test.out, "results.json"))
 t_swell = time.time() - t0
 assembly = meso.load(os.path.join(test.out, "assembly.npz"))
 times = np.asarray(swell["times_days"])

@@ -36,6 +36,6 @@ with options.refuse_bad("swelling_test.py"):  # exit status 2, as argparse's, be
 res = scenario.run_or_exit(test, "swelling_test.py", prepared)
 print(f"swelling_test: {test.scenario} {test.behaviour} damage {'on' if test.damage else 'off'}, solver {test.solver}: "
       f"{res['n_particles']} particles, strain x {res['swelling_strain_x'][-1] * 1e6:.0f}e-6 y {res['swelling_strain_y'][-1] * 1e6:.0f}e-6, "
-      f"iterations {res['adr_iterations']}, wall {res['wall_s']:.1f} s")
+      f"iterations {res['iterations']}, wall {res['wall_s']:.1f} s")
 print(open(os.path.join(test.out, "table.md")).read())
 print(f"results, tables and plots in {test.out}/ (swelling_strain.png, unbalanced.png, force_quantiles.png, crack_map.png, vtk/)")

@@ -22,7 +22,7 @@ import numpy as np
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, "py"))
-from swelldem import options, paper, scenario  # noqa: E402
+from swelldem import options, paper, report, scenario  # noqa: E402
 
 ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
 ap.add_argument("--temperatures-c", type=float, nargs="+", default=[23.0, 38.0, 60.0],
@@ -66,8 +66,7 @@ for T, test in tests.items():
         print(f"{run_name(T)}: exit {rc}, {time.time() - t0:.0f} s", flush=True)
         if rc != 0:
             sys.exit(f"temperature_study.py: the run at {T:g} C failed; see {test.out}/log.txt")
-    with open(path) as f:
-        results[T] = json.load(f)
+    results[T] = report.load_results(path)
 
 # the kinetics each run used, from the kind's own parameters as results.json records them
 tau_c0, tau_l0, _ = paper.KINETICS["asr"]

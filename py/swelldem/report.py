@@ -34,9 +34,29 @@ SERIES = ("fn_p05_kN", "fn_p95_kN", "broken")
 STALE_AFTER_S = 600.0
 
 
+#: results.json keys under the names that earlier versions of swelldem wrote: old name -> present name.
+RENAMED_KEYS = {"adr_iterations": "iterations", "adr_iterations_per_step": "iterations_per_step"}
+
+
+def current_form(res):
+    """A results dict in today's form, whatever version of swelldem wrote it: the keys of
+    RENAMED_KEYS under their present names, and without the flat copies '<series>_<KIND>' (e.g.
+    broken_ITZ) of the per_kind series that earlier files held beside per_kind. What a file does
+    not hold (e.g. 'kinds' in files written before it was recorded) stays absent. Changes `res`
+    and returns it."""
+    for old, new in RENAMED_KEYS.items():
+        if old in res and new not in res:
+            res[new] = res.pop(old)
+    for name, series in (res.get("per_kind") or {}).items():
+        for key in series if isinstance(series, dict) else ():
+            res.pop(f"{key}_{name}", None)
+    return res
+
+
 def load_results(path):
-    """The results dict of a swelling test's results.json at `path`; ResultsError naming the file
-    when it is missing, is not JSON (truncated, malformed) or lacks what the tables read."""
+    """The results dict of a swelling test's results.json at `path`, in today's form whatever
+    version wrote it (current_form); ResultsError naming the file when it is missing, is not JSON
+    (truncated, malformed) or lacks what the tables read."""
     try:
         with open(path) as f:
             text = f.read()
@@ -62,7 +82,7 @@ def load_results(path):
                                f"with one value per step ({n} steps)")
         if not isinstance(res["n_contacts_by_kind"].get(name, 0), int):
             raise ResultsError(f"{path}: not a swelling test's results.json: n_contacts_by_kind {name} is not an integer")
-    return res
+    return current_form(res)
 
 
 def run_state(res, now=None):
@@ -89,7 +109,17 @@ def run_state(res, now=None):
 
 def _iteration_name(res):
     """What one iteration of the run's solver is (results.json 'solver')."""
-    return "Newton" if res.get("solver") == "implicit" else "ADR"
+    return "Newton and relaxation" if res.get("solver") == "implicit" else "ADR"
+
+
+def iterations_text(res):
+    """The run's iterations in words: 'ADR iterations N', or for the implicit solver 'iterations
+    N (Newton n, dynamic relaxation m)' (the split left out for a file that does not record it)."""
+    total = res.get("iterations", "?")
+    if res.get("solver") != "implicit":
+        return f"ADR iterations {total}"
+    split = f" (Newton {res['newton_iterations']}, dynamic relaxation {res['relaxation_iterations']})" if "newton_iterations" in res else ""
+    return f"iterations {total}{split}"
 
 def _plt():
     import matplotlib
@@ -185,7 +215,7 @@ def write_tables(out, res):
         lines += ["", f"Run not finished ({state}): the numbers are those of its last step done."]
     if sx:
         lines += ["", f"Final swelling strain: x {sx[-1] * 1e6:.0f}e-6, y {sy[-1] * 1e6:.0f}e-6. "
-                      f"{res['n_particles']} particles, {_iteration_name(res)} iterations {res['adr_iterations']}, wall {res['wall_s']:.1f} s."]
+                      f"{res['n_particles']} particles, {iterations_text(res)}, wall {res['wall_s']:.1f} s."]
     with open(os.path.join(out, "table.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
     return rows
@@ -203,7 +233,7 @@ def _save(fig, path, dpi=120):
 
 def _step_ends(res):
     """Cumulative iteration [-] at the end of each converged step."""
-    return np.cumsum(np.asarray(res.get("adr_iterations_per_step") or [], dtype=float))
+    return np.cumsum(np.asarray(res.get("iterations_per_step") or [], dtype=float))
 
 
 def _history(res):
@@ -252,7 +282,7 @@ def plot_unbalanced(path, res):
     ax.set(ylabel="unbalanced-force ratio [-]", title=f"{_title(res)}: convergence of every step")
     ax.grid(True, which="major", axis="y", lw=0.3)
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1))
-    per_step = np.asarray(res.get("adr_iterations_per_step") or [], dtype=float)
+    per_step = np.asarray(res.get("iterations_per_step") or [], dtype=float)
     ax2.plot(ends, per_step, "o-", ms=3, color="tab:green", lw=1, label="iterations of each step\n(at its end)")
     ax2.set(xlabel=f"cumulative {_iteration_name(res)} iterations [-]", ylabel="iterations per step [-]")
     ax2.grid(True, which="major", lw=0.3)
@@ -491,7 +521,7 @@ def plot_unbalanced_overlay(path, runs, title):
         it, ratio, full = _history(res)
         st = _style(res, k)
         if full:
-            ax.semilogy(it, ratio, lw=0.7, alpha=0.9, label=f"{label} ({res.get('adr_iterations', '?')} iterations)", **st)
+            ax.semilogy(it, ratio, lw=0.7, alpha=0.9, label=f"{label} ({res.get('iterations', '?')} iterations)", **st)
         ends, at_end = _step_ends(res), np.asarray(res.get("unbalanced_ratio") or [], dtype=float)
         n = min(len(ends), len(at_end))
         ax.semilogy(ends[:n], at_end[:n], "o", ms=2.5, color=st["color"], label=None if full else f"{label}: step ends only")
@@ -535,14 +565,9 @@ def write_overlays(out, runs, prefix, title):
 
 
 def write_results(out, res):
-    """res as out/results.json (written to a temporary file, then renamed: never half a file),
-    with each per-kind series also as a flat key '<series>_<KIND>' (e.g. broken_ITZ)."""
-    flat = dict(res)
-    for name, d in res["per_kind"].items():
-        for key, v in d.items():
-            flat[f"{key}_{name}"] = v
+    """res as out/results.json (written to a temporary file, then renamed: never half a file)."""
     with open(os.path.join(out, "results.json.tmp"), "w") as f:
-        json.dump(flat, f, indent=1, default=float)
+        json.dump(res, f, indent=1, default=float)
     os.replace(os.path.join(out, "results.json.tmp"), os.path.join(out, "results.json"))
 
 
@@ -681,5 +706,5 @@ def paper_tables_md(runs, folders=None):
         size = (r.get("config") or {}).get("size_mm")
         size = f"{size[0]:g} x {size[1]:g}" if size else "?"
         lines.append(f"| {name} | {r.get('n_particles', '?')} | {sum(r['n_contacts_by_kind'].values())} | {size} | {sx * 1e6:.0f}, {sy * 1e6:.0f} | "
-                     f"{r.get('adr_iterations', '?')} | {r.get('wall_s', float('nan')):.0f} | {t_last} | {born} | {run_state(r)[:60]} |")
+                     f"{r.get('iterations', '?')} | {r.get('wall_s', float('nan')):.0f} | {t_last} | {born} | {run_state(r)[:60]} |")
     return lines

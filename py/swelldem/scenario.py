@@ -29,7 +29,6 @@ constructors check what ends up as a ContactKind or solver attribute. Both run b
 mesostructure is generated.
 """
 import ast
-import json
 import math
 import os
 import re
@@ -590,6 +589,13 @@ class Built:
         """{setting: value} of the solver as it runs (every setting of its class)."""
         return _dem().solver_settings(self.solver)
 
+    @property
+    def kind_settings(self):
+        """{kind name: {setting: value}} of every kind of the scene as it runs (the three of the
+        test, and the bars' and platens' when present): the kinds the Ip2 holds."""
+        dem = _dem()
+        return {name: dem.kind_settings(k) for name, k in dem.functor_kinds(self.scene.ip2).items()}
+
 
 def build(test, prepared=None, extra_times=(), assembly=None, reset=True, t0=None):
     """The one way a swelling test becomes a YADE scene, for run() and the benchmarks: prepare()
@@ -657,13 +663,13 @@ def run_all(tests, prog, keep_failed=False):
     keep_failed, a failed one) is read back instead, so that a study that stopped resumes. A run
     that fails is reported on stdout and its results.json (the steps it did) kept. Returns
     {key: results dict}."""
+    from . import report
     keep = ("finished", "failed") if keep_failed else ("finished",)
     results = {}
     for key, test in tests.items():
         path = os.path.join(test.out, "results.json")
         if os.path.exists(path):
-            with open(path) as f:
-                res = json.load(f)
+            res = report.load_results(path)  # a run kept from an earlier version of swelldem reads in today's form
             if res.get("status", "").split(":")[0] in keep:
                 results[key] = res
                 continue
@@ -672,8 +678,7 @@ def run_all(tests, prog, keep_failed=False):
             results[key] = run(test)
         except RunFailed as e:  # reported; its results.json (the steps done) is read back and the others go on
             print(f"{prog}: {key} {e.status}", flush=True)
-            with open(path) as f:
-                results[key] = json.load(f)
+            results[key] = report.load_results(path)
     return results
 
 
@@ -712,11 +717,12 @@ def run(test, prepared=None, extra_times=(), after_step=None):
     r_mean = built.r_mean
     counts = {name: int((assembly.kind == k).sum()) for k, name in enumerate(paper.KIND_NAMES)}
     res = {"scenario": test.scenario, "behaviour": test.behaviour, "damage": test.damage, "solver": test.solver, "tolerance": solver.tolerance, "config": asdict(test),
-           "solver_settings": built.solver_settings,
+           "solver_settings": built.solver_settings, "kinds": built.kind_settings,
            "calibration": cal, "d_inf_m": d_inf, "r_mean_m": r_mean, "n_particles": int(len(assembly.x)),
            "n_contacts_by_kind": counts, "n_gel_pockets": int(len(gel)), "times_days": [], "swelling_strain_x": [],
            "swelling_strain_y": [], "swelling_strain_area": [], "platen_stress_x_Pa": [], "platen_stress_y_Pa": [],
-           "platen_disp_x_m": [], "platen_disp_y_m": [], "unbalanced_ratio": [], "adr_iterations_per_step": [], "step_at_round_off": [], "adr_iterations": 0,
+           "platen_disp_x_m": [], "platen_disp_y_m": [], "unbalanced_ratio": [], "iterations_per_step": [], "step_at_round_off": [], "iterations": 0,
+           "newton_iterations": 0, "relaxation_iterations": 0,
            "per_kind": {n: {"fn_p05_kN": [], "fn_p95_kN": [], "broken": [], "born_broken": []} for n in paper.KIND_NAMES},
            "temperature": temperature_record(test, kinds),
            "status": "running", "wall_s": 0.0, "yade_tags": batch_tags()}

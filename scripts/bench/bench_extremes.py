@@ -24,6 +24,7 @@ BENCH_DIR = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(BENCH_DIR))
 sys.path.insert(0, os.path.join(REPO, "py"))
 from swelldem.paper import AGGREGATE_YOUNG, KIND_NAMES  # noqa: E402
+from swelldem.report import load_results  # noqa: E402
 
 LAUNCHER = os.path.join(REPO, "scripts", "yade-swelldem")
 SCRIPT = os.path.join(REPO, "scripts", "swelling_test.py")
@@ -54,8 +55,7 @@ def run_one(out, case, solver, seed, timeout):
     folder = os.path.join(out, "runs", f"{case.replace(' ', '_')}-{solver}-s{seed}")
     path = os.path.join(folder, "results.json")
     if os.path.exists(path):
-        with open(path) as f:
-            res = json.load(f)
+        res = load_results(path)
         if res.get("status") != "running":  # finished or failed: kept (a killed run stays 'running')
             return folder, res, None
     args = [LAUNCHER, "-j", "1", "-n", "-x", SCRIPT, *SIZE, "--seed", str(seed), "--solver", solver, *CASES[case][1], "--out", folder]
@@ -67,8 +67,7 @@ def run_one(out, case, solver, seed, timeout):
         ended = f"timeout after {timeout} s"
     res = None
     if os.path.exists(path):
-        with open(path) as f:
-            res = json.load(f)
+        res = load_results(path)
     print(f"bench_extremes: {case} {solver} seed {seed}: {res.get('status', '?')[:60] if res else 'no results'}"
           f"{' (' + ended + ')' if ended else ''} in {time.time() - t0:.0f} s", flush=True)
     return folder, res, ended
@@ -80,7 +79,7 @@ def summary(res):
     return {"status": res["status"], "eps_x": res["swelling_strain_x"][-1] if res["swelling_strain_x"] else None,
             "eps_y": res["swelling_strain_y"][-1] if res["swelling_strain_y"] else None,
             "broken_pct": {k: (100.0 * last[k] / n[k] if n.get(k) and last[k] is not None else None) for k in KIND_NAMES},
-            "iterations": res.get("adr_iterations"), "wall_s": res.get("wall_s"), "steps": len(res["times_days"]),
+            "iterations": res.get("iterations"), "wall_s": res.get("wall_s"), "steps": len(res["times_days"]),
             "fallback": res.get("fallback_steps", []), "n_contacts": n}
 
 

@@ -186,17 +186,17 @@ def driver(a):
         lines += ["", f"Power fits over the sizes (-j {j0}): time per iteration ~ N^{fits['time_per_iteration'][0]:.2f}, "
                   f"iterations per step (first steps) ~ N^{fits['iterations_per_step'][0]:.2f}, peak memory ~ N^{fits['peak_memory'][0]:.2f}"]
     if a.calibration and os.path.exists(a.calibration) and rs:
-        with open(a.calibration) as f:
-            cal = json.load(f)
+        from swelldem.report import load_results
+        cal = load_results(a.calibration)  # a run of any version, read in today's form
         n_cal = cal["n_particles"]
-        first_cal = [int(v) for v in cal.get("adr_iterations_per_step", [])[:a.steps]]
+        first_cal = [int(v) for v in cal.get("iterations_per_step", [])[:a.steps]]
         log = os.path.dirname(os.path.abspath(a.calibration)) + ".log"
         if not any(first_cal) and os.path.exists(log):  # runs made before the per-step counts were recorded: their progress lines
             import re
             with open(log) as f:
                 first_cal = [int(m.group(1)) for m in re.finditer(r"step \d+/\d+ .*?ADR iterations (\d+) ", f.read())][:a.steps]
         lines += ["", f"EXTRAPOLATED whole-run time (ISR, 36 steps, -j {j0}): ADR iterations of the whole run of {a.calibration} "
-                  f"({n_cal} discs: {cal['adr_iterations']} iterations; first {a.steps} steps {first_cal}) x (first steps' iterations at N / "
+                  f"({n_cal} discs: {cal['iterations']} iterations; first {a.steps} steps {first_cal}) x (first steps' iterations at N / "
                   f"at {n_cal} discs) x time per iteration at N. Not measured.", "",
                   "| discs | iterations (extrapolated) | time per iteration ms | whole run (extrapolated) |", "|---|---|---|---|"]
         for r in rs:
@@ -204,7 +204,7 @@ def driver(a):
                 continue
             k = min(len(first_cal), len(r["step_iterations"]))
             growth = sum(r["step_iterations"][:k]) / sum(first_cal[:k])
-            it = cal["adr_iterations"] * growth
+            it = cal["iterations"] * growth
             t = it * r["per_iteration_wall_us"] / 1e6
             extra.append({"n_particles": r["n_particles"], "iterations": it, "wall_s": t})
             lines.append(f"| {r['n_particles']} | {it:.0f} | {r['per_iteration_wall_us'] / 1e3:.2f} | {t / 60:.1f} min |")

@@ -24,6 +24,7 @@ import time
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(REPO, "py"))
 from swelldem import options, paper  # noqa: E402
+from swelldem.report import load_results  # noqa: E402
 
 
 def run_one(out, size, scenario, behaviour, damage, solver, tolerance, threads, seed):
@@ -46,10 +47,9 @@ def run_one(out, size, scenario, behaviour, damage, solver, tolerance, threads, 
         rss = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", f.read()).group(1)) / 1024
     res = {}
     if os.path.exists(os.path.join(out, "results.json")):
-        with open(os.path.join(out, "results.json")) as f:
-            res = json.load(f)
+        res = load_results(os.path.join(out, "results.json"))
     rec = {"rc": rc, "wall_s": wall, "run_wall_s": res.get("wall_s"), "peak_MB": rss, "status": res.get("status"),
-           "iterations": res.get("adr_iterations"), "n_particles": res.get("n_particles"),
+           "iterations": res.get("iterations"), "n_particles": res.get("n_particles"),
            "strain": [res["swelling_strain_x"][-1], res["swelling_strain_y"][-1]] if res.get("swelling_strain_x") else None,
            "per_kind": res.get("per_kind")}
     with open(os.path.join(out, "run.json"), "w") as f:

@@ -20,21 +20,23 @@ echo "run_paper_size: start $(date -u +%FT%TZ), load $(cut -d' ' -f1-3 /proc/loa
 	--out "$OUT" >"$OUT.log" 2>&1
 rc=$?
 echo "run_paper_size: end $(date -u +%FT%TZ), exit $rc, load $(cut -d' ' -f1-3 /proc/loadavg)"
-/usr/bin/python3 - "$OUT" <<'PY'
+/usr/bin/python3 - "$OUT" "$REPO/py" <<'PY'
 import json, re, sys
 out = sys.argv[1]
-r = json.load(open(out + "/results.json"))
+sys.path.insert(0, sys.argv[2])
+from swelldem.report import load_results
+r = load_results(out + "/results.json")
 t = open(out + ".time").read()
 wall = re.search(r"Elapsed \(wall clock\) time.*: (\S+)", t).group(1)
 rss = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", t).group(1)) / 1024
 n = r["n_contacts_by_kind"]
-broken = {k: r[f"broken_{k}"][-1] for k in n} if r["times_days"] else {}
+broken = {k: r["per_kind"][k]["broken"][-1] for k in n} if r["times_days"] else {}
 print(f"run_paper_size: status {r['status']}; {r['n_particles']} particles, {sum(n.values())} contacts {n}; "
-      f"{len(r['times_days'])} physical steps, {r['adr_iterations']} ADR iterations; run wall {r['wall_s']:.0f} s "
+      f"{len(r['times_days'])} physical steps, {r['iterations']} ADR iterations; run wall {r['wall_s']:.0f} s "
       f"(process {wall}), peak memory {rss:.0f} MB; final strain x {r['swelling_strain_x'][-1]:.4g} y {r['swelling_strain_y'][-1]:.4g}; "
       f"broken {broken}")
 summary = {"status": r["status"], "n_particles": r["n_particles"], "n_contacts_by_kind": n, "steps": len(r["times_days"]),
-           "adr_iterations": r["adr_iterations"], "adr_iterations_per_step": r["adr_iterations_per_step"], "run_wall_s": r["wall_s"],
+           "iterations": r["iterations"], "iterations_per_step": r["iterations_per_step"], "run_wall_s": r["wall_s"],
            "process_wall": wall, "peak_rss_MB": rss, "final_strain": [r["swelling_strain_x"][-1], r["swelling_strain_y"][-1]],
            "broken": broken}
 json.dump(summary, open(out + ".summary.json", "w"), indent=1)

@@ -27,7 +27,7 @@ def run(tmp_path, *args):
 def finite(res):
     vals = res["swelling_strain_x"] + res["swelling_strain_y"] + res["unbalanced_ratio"]
     for k in ("MORTAR", "ITZ", "AGG"):
-        vals += [v for v in res[f"fn_p05_kN_{k}"] + res[f"fn_p95_kN_{k}"] if v is not None]
+        vals += [v for v in res["per_kind"][k]["fn_p05_kN"] + res["per_kind"][k]["fn_p95_kN"] if v is not None]
     return all(math.isfinite(v) for v in vals)
 
 
@@ -55,7 +55,7 @@ def test_extreme_runs_end_finite_in_equilibrium(tmp_path, name, args):
     assert_finished_in_equilibrium(p, res)
     if name == "zero swelling":
         assert max(abs(e) for e in res["swelling_strain_x"] + res["swelling_strain_y"]) < 1e-12
-        assert all(res[f"broken_{k}"][-1] == 0 for k in ("MORTAR", "ITZ", "AGG"))
+        assert all(res["per_kind"][k]["broken"][-1] == 0 for k in ("MORTAR", "ITZ", "AGG"))
     if name == "a single huge step":
         assert len(res["times_days"]) == 1
 
@@ -82,14 +82,14 @@ def test_extreme_runs_with_an_equilibrium_finish(tmp_path, name, args, solver):
     assert_finished_in_equilibrium(p, res)
     n = res["n_contacts_by_kind"]
     for k in n:
-        assert all(b <= n[k] for b in res[f"broken_{k}"]), (k, "only the bonded contacts can break")
+        assert all(b <= n[k] for b in res["per_kind"][k]["broken"]), (k, "only the bonded contacts can break")
     if name == "all contacts broken":
         if solver == "adr":
-            assert all(res[f"broken_{k}"][-1] == n[k] for k in n), {k: (res[f"broken_{k}"][-1], n[k]) for k in n}
+            assert all(res["per_kind"][k]["broken"][-1] == n[k] for k in n), {k: (res["per_kind"][k]["broken"][-1], n[k]) for k in n}
         else:
             c = last_contacts(tmp_path / "out")
             intact = (c["bonded"] > 0) & (c["broken"] == 0)
-            assert intact.sum() == sum(n[k] - res[f"broken_{k}"][-1] for k in n)
+            assert intact.sum() == sum(n[k] - res["per_kind"][k]["broken"][-1] for k in n)
             assert (c["FnOverStrength"][intact] <= 1 + 1e-9).all(), c["FnOverStrength"][intact]
             assert intact.sum() < 0.05 * sum(n.values()), "near-zero strengths break nearly every contact"
 

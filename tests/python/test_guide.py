@@ -154,14 +154,14 @@ def test_a_first_run_and_its_paraview_files(work):
         contacts, c, cf = read_vtp(out / "vtk" / cfile)
         assert cf["TimeValue"] == pytest.approx(times[s], rel=1e-12) and cf["step"] == s
         bonded = c["bonded"] == 1
-        assert bonded.sum() == n_bonded and (~bonded).sum() == sum(res[f"born_broken_{k}"][s] for k in paper.KIND_NAMES)
+        assert bonded.sum() == n_bonded and (~bonded).sum() == sum(res["per_kind"][k]["born_broken"][s] for k in paper.KIND_NAMES)
         for name, k in paper.KIND_IDS.items():
             of_kind = c["kindId"] == k
             assert (of_kind & bonded).sum() == res["n_contacts_by_kind"][name]
-            assert (of_kind & bonded & (c["broken"] == 1)).sum() == res[f"broken_{name}"][s]
+            assert (of_kind & bonded & (c["broken"] == 1)).sum() == res["per_kind"][name]["broken"][s]
             # forces in N in the files, in kN in results.json
             q05, q95 = np.quantile(c["Fn"][of_kind], [0.05, 0.95]) / 1e3
-            assert (q05, q95) == pytest.approx((res[f"fn_p05_kN_{name}"][s], res[f"fn_p95_kN_{name}"][s]), rel=1e-9, abs=1e-15)
+            assert (q05, q95) == pytest.approx((res["per_kind"][name]["fn_p05_kN"][s], res["per_kind"][name]["fn_p95_kN"][s]), rel=1e-9, abs=1e-15)
         # The strain refitted from the files: discs with at least 2 bonded contacts, weights r^2,
         # displacement u = a + G X (least squares), X the start position = centre - displacement.
         particles, pa, _ = read_vtp(out / "vtk" / pfile)
@@ -181,7 +181,7 @@ def test_a_first_run_and_its_paraview_files(work):
     p = subprocess.run(["/usr/bin/python3", "-c", snippet], cwd=work, capture_output=True, text=True, timeout=60)
     assert p.returncode == 0, p.stderr
     t, q95 = map(float, re.search(r"t = (\S+) d: ITZ 95 % quantile (\S+) kN", p.stdout).groups())
-    assert t == pytest.approx(3650.0) and q95 == pytest.approx(res["fn_p95_kN_ITZ"][-1], abs=1e-4)
+    assert t == pytest.approx(3650.0) and q95 == pytest.approx(res["per_kind"]["ITZ"]["fn_p95_kN"][-1], abs=1e-4)
 
 
 def test_a_sweep_with_yade_batch_and_its_comparison(work):
@@ -205,7 +205,7 @@ def test_a_sweep_with_yade_batch_and_its_comparison(work):
     assert high["config"]["kind_params"] == {"ITZ": {"tensileStrength": 3e6}}
     # the same mesostructure; a 50 % stronger ITZ breaks fewer of its contacts
     assert low["n_contacts_by_kind"] == high["n_contacts_by_kind"]
-    assert 0 < high["broken_ITZ"][-1] < low["broken_ITZ"][-1]
+    assert 0 < high["per_kind"]["ITZ"]["broken"][-1] < low["per_kind"]["ITZ"]["broken"][-1]
     run_ok(guide_command("compare_runs.py"), work)
     md = (sweep / "compare" / "compare.md").read_text()
     assert "forces (kN)" in md and "Reference: out/my_sweep/itz_2MPa" in md
@@ -215,7 +215,7 @@ def test_a_sweep_with_yade_batch_and_its_comparison(work):
     rows = [dict(zip(header, (c.strip() for c in line.strip("|").split("|")))) for line in lines[2:]]
     itz = {r["name"]: r["broken (%)"] for r in rows if r["contact"] == "ITZ"}
     n_itz = low["n_contacts_by_kind"]["ITZ"]
-    assert itz == {name: f"{r['broken_ITZ'][-1]} ({100 * r['broken_ITZ'][-1] / n_itz:.1f})" for name, r in
+    assert itz == {name: f"{r['per_kind']['ITZ']['broken'][-1]} ({100 * r['per_kind']['ITZ']['broken'][-1] / n_itz:.1f})" for name, r in
                    (("itz_2MPa", low), ("itz_3MPa", high))}
 
 

@@ -137,7 +137,7 @@ def results(status="finished", **changes):
                 for k, b in (("MORTAR", 3), ("ITZ", 5), ("AGG", 1))}
     res = {"scenario": "isr", "behaviour": "viscoelastic", "damage": True, "status": status, "times_days": [10.0, 100.0],
            "swelling_strain_x": [1e-4, 2e-4], "swelling_strain_y": [1e-4, 2e-4], "n_particles": 100,
-           "n_contacts_by_kind": {"MORTAR": 100, "ITZ": 20, "AGG": 30}, "per_kind": per_kind, "adr_iterations": 10,
+           "n_contacts_by_kind": {"MORTAR": 100, "ITZ": 20, "AGG": 30}, "per_kind": per_kind, "iterations": 10,
            "wall_s": 2.0, "updated": time.time()}
     res.update(changes)
     return res
@@ -253,6 +253,33 @@ def test_paper_tables_refuses_two_runs_of_the_same_case_naming_both(tmp_path):
     assert p.returncode == 1 and p.stdout == "" and "Traceback" not in p.stderr
     assert p.stderr == (f"paper_tables.py: {tmp_path / 'a' / 'results.json'} and {tmp_path / 'isr-el-nodmg' / 'results.json'} are both "
                         "runs of isr-el-nodmg (isr, elastic, damage off); allowed: one run of each scenario, behaviour and damage in a folder\n")
+
+
+def old_form(res):
+    """res as results.json held it in swelldem's earlier form: the iteration counts as
+    adr_iterations and adr_iterations_per_step, and each per-kind series also as a flat key
+    '<series>_<KIND>' beside per_kind."""
+    old = dict(res)
+    old["adr_iterations"] = old.pop("iterations")
+    old["adr_iterations_per_step"] = old.pop("iterations_per_step")
+    for kind, series in res["per_kind"].items():
+        for name, values in series.items():
+            old[f"{name}_{kind}"] = values
+    return old
+
+
+def test_an_old_form_results_json_is_read_in_todays_form(tmp_path):
+    """report.load_results, which the table scripts use, reads a results.json of the earlier form
+    under today's names, without the flat copies of the per-kind series; paper_tables.py tabulates
+    it with its iterations."""
+    today = results(updated=1.0e9, iterations=17, iterations_per_step=[7, 10])
+    path = write(tmp_path / "isr-ve-dmg", old_form(today)) / "results.json"
+    on_disk = json.loads(path.read_text())
+    assert on_disk["broken_ITZ"] == [0, 5] and on_disk["adr_iterations"] == 17 and "iterations" not in on_disk
+    assert report.load_results(str(path)) == today
+    p = paper_tables(tmp_path)
+    assert p.returncode == 0, p.stderr
+    assert any(r.startswith("| isr-ve-dmg |") and "| 17 | 2 | 100 | 3 | finished |" in r for r in p.stdout.splitlines()), p.stdout
 
 
 @pytest.mark.parametrize("content", ["nothing", "empty run folders"])

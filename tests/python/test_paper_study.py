@@ -76,7 +76,7 @@ def test_table_3_7_rows(done):
         for kind in KINDS:
             row = [r for r in rows if r["scenario"] == sc and r["behaviour"] == "viscoelastic" and r["damage"] == "True" and r["kind"] == kind][0]
             for q, col in (("p05", "var_p05_pct"), ("p95", "var_p95_pct")):
-                a, b = ve[f"fn_{q}_kN_{kind}"][-1], ref[f"fn_{q}_kN_{kind}"][-1]
+                a, b = ve["per_kind"][kind][f"fn_{q}_kN"][-1], ref["per_kind"][kind][f"fn_{q}_kN"][-1]
                 if abs(b) >= 0.05:
                     assert float(row[col]) == pytest.approx(100 * (a - b) / b, rel=1e-9), (sc, kind, q)
                 else:
@@ -93,17 +93,17 @@ def test_what_the_runs_record_for_the_figures(done):
         res = results(out, name)
         h = res["unbalanced_history"]
         # the solver's history ends at its last iteration and holds each step's converged ratio
-        ends = np.cumsum(res["adr_iterations_per_step"]).tolist()
-        assert h["iteration"][-1] == res["adr_iterations"] == ends[-1]
+        ends = np.cumsum(res["iterations_per_step"]).tolist()
+        assert h["iteration"][-1] == res["iterations"] == ends[-1]
         at = dict(zip(h["iteration"], h["ratio"]))
         assert [at[e] for e in ends] == res["unbalanced_ratio"], name
-        assert h["every"] == 20 and len(h["iteration"]) <= res["adr_iterations"] / 20 + 2 * len(ends)
+        assert h["every"] == 20 and len(h["iteration"]) <= res["iterations"] / 20 + 2 * len(ends)
         # the break steps give back the broken counts of every step
         z = np.load(out / name / "contact_breaks.npz")
         assert len(z["pairs"]) == sum(res["n_contacts_by_kind"].values())
         for k, kind in enumerate(KINDS):
             counts = [int(((z["kind"] == k) & (z["break_step"] >= 0) & (z["break_step"] <= s)).sum()) for s in range(len(res["times_days"]))]
-            assert counts == res[f"broken_{kind}"], (name, kind)
+            assert counts == res["per_kind"][kind]["broken"], (name, kind)
         # tensile capacity: Table 3.5's f_t times the mesostructure's facet areas
         a = meso.load(str(out / name / "assembly.npz"))
         for k, kind in enumerate(KINDS):
@@ -114,7 +114,7 @@ def test_what_the_runs_record_for_the_figures(done):
         for b in ("el", "ve"):
             for d in days:
                 assert (out / f"{sc}-{b}-dmg" / f"crack_map_{d}d.png").stat().st_size > 10000
-    assert any(results(out, f"isr-{b}-dmg")["broken_ITZ"][-1] > 0 for b in ("el", "ve")), "the crack maps must show cracks"
+    assert any(results(out, f"isr-{b}-dmg")["per_kind"]["ITZ"]["broken"][-1] > 0 for b in ("el", "ve")), "the crack maps must show cracks"
 
 
 def test_resume(done):

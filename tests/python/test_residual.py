@@ -156,7 +156,7 @@ for name, save in (("plain", False), ("saving", True)):
     saver = residual.AgeSaver([100.0], name) if save else None
     res = scenario.run(t, extra_times=[100.0], after_step=saver)
     runs[name] = {k: res[k] for k in ("times_days", "swelling_strain_x", "swelling_strain_y", "unbalanced_ratio",
-                                      "adr_iterations_per_step", "per_kind")}
+                                      "iterations_per_step", "per_kind")}
     runs[name]["positions"] = [list(b.state.pos) for b in O.bodies]
     runs[name]["fn"] = [I.phys.Fn for I in O.interactions if I.isReal]
 path = residual.AgeSaver.path("saving", 100.0)

@@ -15,7 +15,7 @@ from conftest import LAUNCHER, REPO, build_dir
 
 SCRIPT = os.path.join(REPO, "scripts", "swelling_test.py")
 KEYS = ("scenario", "behaviour", "damage", "times_days", "swelling_strain_x", "swelling_strain_y", "unbalanced_ratio",
-        "n_contacts_by_kind", "adr_iterations", "wall_s")
+        "n_contacts_by_kind", "iterations", "wall_s")
 
 
 def swelling_test(out, *args, check=True):
@@ -43,8 +43,14 @@ def test_output_contract(isr_runs):
     for k in KEYS:
         assert k in res
     for kind in ("MORTAR", "ITZ", "AGG"):
-        for k in ("fn_p05_kN", "fn_p95_kN", "broken"):
-            assert len(res[f"{k}_{kind}"]) == len(res["times_days"])
+        for k in ("fn_p05_kN", "fn_p95_kN", "broken", "born_broken"):
+            assert len(res["per_kind"][kind][k]) == len(res["times_days"])
+    # each series once: under per_kind only, with no flat copy '<series>_<KIND>' beside it
+    assert not [k for k in res if re.fullmatch(r"(fn_p05_kN|fn_p95_kN|broken|born_broken)_[A-Z]+", k)], sorted(res)
+    # the iterations, named for what they count: the implicit solver's are Newton or dynamic relaxation ones
+    assert not [k for k in res if k.startswith("adr_")], sorted(res)
+    assert res["iterations"] == sum(res["iterations_per_step"]) == res["newton_iterations"] + res["relaxation_iterations"]
+    assert res["newton_iterations"] > 0
     assert res["status"] == "finished" and res["times_days"][-1] == pytest.approx(3650)
     for f in ("table.md", "table.csv", "swelling_strain.png", "unbalanced.png", "force_quantiles.png", "crack_map.png"):
         assert (out / f).stat().st_size > 0, f
@@ -54,7 +60,7 @@ def test_output_contract(isr_runs):
     # the total at the end: the steps, the solver's iterations (those results.json counts) and the wall time
     n = len(res["times_days"])
     name = {"adr": "ADR", "implicit": "Newton"}[res["solver"]]
-    assert f"swelldem: finished: {n} physical steps to t = 3650 d, {res['adr_iterations']} {name} iterations, " in proc.stdout
+    assert f"swelldem: finished: {n} physical steps to t = 3650 d, {res['iterations']} {name} iterations, " in proc.stdout
     assert all(u <= 1e-4 * 1.0000001 or u == 0 for u in res["unbalanced_ratio"])
     assert res["solver"] == "implicit"  # the default
     assert res["calibration"]["run"] is False  # paper-micro does not use beta: no second simulation
@@ -70,8 +76,8 @@ def assert_creep_relaxes_isr_forces(el, ve):
     the AGG 5 % quantile, tensile or nil with elastic contacts, falls (paper 0.0 -> -0.5, ours
     0.85 -> 0.03)."""
     for kind in ("MORTAR", "ITZ", "AGG"):
-        e05, e95 = el[f"fn_p05_kN_{kind}"][-1], el[f"fn_p95_kN_{kind}"][-1]
-        v05, v95 = ve[f"fn_p05_kN_{kind}"][-1], ve[f"fn_p95_kN_{kind}"][-1]
+        e05, e95 = el["per_kind"][kind]["fn_p05_kN"][-1], el["per_kind"][kind]["fn_p95_kN"][-1]
+        v05, v95 = ve["per_kind"][kind]["fn_p05_kN"][-1], ve["per_kind"][kind]["fn_p95_kN"][-1]
         assert 0 < v95 - v05 <= 0.55 * (e95 - e05), (kind, (v95 - v05) / (e95 - e05))
         assert v95 < e95, kind
         if kind == "AGG":
@@ -87,14 +93,14 @@ def test_paper_findings_isr(isr_runs):
         assert 0.3e-3 < r["swelling_strain_x"][-1] < 1.0e-3
         assert r["swelling_strain_y"][-1] == pytest.approx(r["swelling_strain_x"][-1], rel=0.15)
     # Mortar is mostly in compression, aggregates mostly in tension (paper 3.5.2).
-    assert el["fn_p05_kN_MORTAR"][-1] < 0 and el["fn_p95_kN_AGG"][-1] > 0
+    assert el["per_kind"]["MORTAR"]["fn_p05_kN"][-1] < 0 and el["per_kind"]["AGG"]["fn_p95_kN"][-1] > 0
     assert_creep_relaxes_isr_forces(el, ve)
     # No damage without damage; broken counts never decrease with damage, and ITZ breaks most (paper 3.5.5).
-    assert all(b == 0 for k in ("MORTAR", "ITZ", "AGG") for b in el[f"broken_{k}"])
+    assert all(b == 0 for k in ("MORTAR", "ITZ", "AGG") for b in el["per_kind"][k]["broken"])
     for k in ("MORTAR", "ITZ", "AGG"):
-        b = dmg[f"broken_{k}"]
+        b = dmg["per_kind"][k]["broken"]
         assert all(x <= y for x, y in zip(b, b[1:]))
-    share = {k: dmg[f"broken_{k}"][-1] / dmg["n_contacts_by_kind"][k] for k in ("MORTAR", "ITZ", "AGG")}
+    share = {k: dmg["per_kind"][k]["broken"][-1] / dmg["n_contacts_by_kind"][k] for k in ("MORTAR", "ITZ", "AGG")}
     assert share["ITZ"] == max(share.values()) and share["ITZ"] > 0.2
 
 
@@ -108,7 +114,8 @@ def test_compare_table_3_7(isr_runs, tmp_path):
     assert len(rows) == 9
     ve = isr_runs["ve"][1]
     row = [r for r in rows if r["behaviour"] == "viscoelastic" and r["damage"] == "False" and r["kind"] == "MORTAR"][0]
-    expected = 100 * (ve["fn_p05_kN_MORTAR"][-1] - ref["fn_p05_kN_MORTAR"][-1]) / ref["fn_p05_kN_MORTAR"][-1]
+    v05, r05 = ve["per_kind"]["MORTAR"]["fn_p05_kN"][-1], ref["per_kind"]["MORTAR"]["fn_p05_kN"][-1]
+    expected = 100 * (v05 - r05) / r05
     assert expected < 0, "relaxation shrinks the compressive quantile: a negative variation, as in the paper"
     assert float(row["var_p05_pct"]) == pytest.approx(expected, rel=1e-9)
     assert "variation to the reference" in (tmp_path / "compare.md").read_text()
@@ -156,7 +163,48 @@ def test_kind_param_changes_the_mortar_strength(isr_runs, tmp_path):
     res, _ = swelling_test(tmp_path / "weak", "--scenario", "isr", "--behaviour", "viscoelastic",
                            "--kind-param", "MORTAR.tensileStrength=1e6")
     assert res["config"]["kind_params"] == {"MORTAR": {"tensileStrength": 1e6}}
-    assert res["broken_MORTAR"][-1] > ref["broken_MORTAR"][-1] + 5, (res["broken_MORTAR"][-1], ref["broken_MORTAR"][-1])
+    # the kinds as run: the mortar's as asked, the others' the paper's Table 3.5 values
+    assert [res["kinds"][k]["tensileStrength"] for k in ("MORTAR", "ITZ", "AGG")] == [1e6, 2e6, 6e6]
+    assert [ref["kinds"][k]["tensileStrength"] for k in ("MORTAR", "ITZ", "AGG")] == [4e6, 2e6, 6e6]
+    weak, strong = res["per_kind"]["MORTAR"]["broken"][-1], ref["per_kind"]["MORTAR"]["broken"][-1]
+    assert weak > strong + 5, (weak, strong)
+
+
+def kind_header_settings():
+    """The names of ContactKind's settings, read from the C++ headers: the attributes
+    pkg/yade/ContactKind.hpp flags swelldem_attr::Setting and every per-kind parameter of the core's
+    table (SWELLDEM_KIND_PARAMETERS in pkg/core/ContactKindParams.hpp)."""
+    with open(os.path.join(REPO, "pkg", "yade", "ContactKind.hpp")) as f:
+        names = set(re.findall(r"X\(\s*[\w:<>]+\s*,\s*(\w+)\s*,[^\n]*swelldem_attr::Setting", f.read()))
+    with open(os.path.join(REPO, "pkg", "core", "ContactKindParams.hpp")) as f:
+        table = f.read().split("#define SWELLDEM_KIND_PARAMETERS(X)", 1)[1].split("\n\n", 1)[0]  # up to the blank line after it
+    return names | set(re.findall(r"^\s*X\(\s*[\w:<>]+\s*,\s*(\w+)\s*,", table, flags=re.M))
+
+
+def test_results_record_every_kind_as_run(tmp_path):
+    """results.json 'kinds': every kind of the scene (the paper's three, a bar's STEEL and BOND,
+    the platens' PLATEN) with every setting of ContactKind and the value it ran with: what the
+    command line asked (--kind-param, --strength-scale, --aggregate-young, --rebar-young,
+    --temperature-c) and the paper's values elsewhere (Tables 3.3 and 3.5)."""
+    res, _ = swelling_test(tmp_path / "kinds", "--size-mm", "16", "16", "--seed", "2", "--scenario", "isr", "--behaviour", "viscoelastic",
+                           "--steps-per-decade", "2", "--t-end", "10", "--strength-scale", "0.5", "--kind-param", "MORTAR.tensileStrength=1e6",
+                           "--aggregate-young", "50e9", "--rebar-ratio", "0.01", "--rebar-young", "210e9", "--boundary-x", "fixed",
+                           "--temperature-c", "38")
+    kinds = res["kinds"]
+    assert {k: v["kindId"] for k, v in kinds.items()} == {"MORTAR": 0, "ITZ": 1, "AGG": 2, "PLATEN": 3, "STEEL": 4, "BOND": 5}
+    names = kind_header_settings()
+    assert {"name", "kindId", "behaviour", "young", "tensileStrength", "temperatures"} <= names
+    for name, settings in kinds.items():
+        assert set(settings) == names, (name, sorted(set(settings) ^ names))
+        assert settings["name"] == name
+    assert {k: v["tensileStrength"] for k, v in kinds.items() if k in ("MORTAR", "ITZ", "AGG", "BOND")} == \
+        {"MORTAR": 1e6, "ITZ": 0.5 * 2e6, "AGG": 0.5 * 6e6, "BOND": 0.5 * 2e6}  # the bond takes the ITZ's strength
+    assert kinds["AGG"]["young"] == 50e9 and kinds["STEEL"]["young"] == 210e9
+    assert [kinds[k]["behaviour"] for k in ("MORTAR", "ITZ", "AGG", "STEEL")] == ["viscoelastic", "viscoelastic", "elastic", "elastic"]
+    assert [kinds["MORTAR"][q] for q in ("q1", "q2", "q3", "q4")] == pytest.approx([6.7e-12, 108.1e-12, 44.2e-12, 14.3e-12], rel=1e-12)
+    assert kinds["ITZ"]["temperatures"] == pytest.approx([311.15]) and kinds["ITZ"]["temperatureDays"] == [0.0]
+    assert kinds["MORTAR"]["damage"] is True and kinds["STEEL"]["damage"] is False
+    assert kinds["MORTAR"]["swelling"] is True and kinds["BOND"]["swelling"] is False  # ISR: the mortar swells, the bond does not
 
 
 def test_macro_parameters_run_the_calibration(tmp_path):
@@ -242,16 +290,16 @@ def test_broken_counts_are_of_bonded_contacts_only(tmp_path):
     broken count stays within the kind's bonded contacts (the issue: 1168 of 431)."""
     nodmg, _ = swelling_test(tmp_path / "nodmg", "--scenario", "isr", "--behaviour", "elastic", "--no-damage", "--eps-inf", "1")
     kinds = ("MORTAR", "ITZ", "AGG")
-    assert sum(nodmg[f"born_broken_{k}"][-1] for k in kinds) > 0, "the case must make new contacts to test anything"
-    assert all(b == 0 for k in kinds for b in nodmg[f"broken_{k}"]), {k: max(nodmg[f"broken_{k}"]) for k in kinds}
+    assert sum(nodmg["per_kind"][k]["born_broken"][-1] for k in kinds) > 0, "the case must make new contacts to test anything"
+    assert all(b == 0 for k in kinds for b in nodmg["per_kind"][k]["broken"]), {k: max(nodmg["per_kind"][k]["broken"]) for k in kinds}
     table = (tmp_path / "nodmg" / "table.md").read_text()
     assert "| new contacts |" in table and "born broken" in table
     dmg, _ = swelling_test(tmp_path / "dmg", "--scenario", "isr", "--behaviour", "elastic", "--eps-inf", "1")
-    assert sum(dmg[f"born_broken_{k}"][-1] for k in kinds) > 0
+    assert sum(dmg["per_kind"][k]["born_broken"][-1] for k in kinds) > 0
     for k in kinds:
         n = dmg["n_contacts_by_kind"][k]
-        assert all(b <= n for b in dmg[f"broken_{k}"]), (k, max(dmg[f"broken_{k}"]), n)
-        assert dmg[f"broken_{k}"][-1] > 0
+        assert all(b <= n for b in dmg["per_kind"][k]["broken"]), (k, max(dmg["per_kind"][k]["broken"]), n)
+        assert dmg["per_kind"][k]["broken"][-1] > 0
 
 
 @pytest.mark.parametrize("scenario", ["isr", "asr-coarse"])
@@ -263,7 +311,7 @@ def test_implicit_solver_agrees_with_the_adr_at_a_tight_tolerance(tmp_path, scen
     imp, _ = swelling_test(tmp_path / "implicit", *args, "--solver", "implicit")
     adr, _ = swelling_test(tmp_path / "adr", *args, "--solver", "adr", "--tolerance", "1e-8")
     assert imp["solver"] == "implicit" and imp["status"] == "finished" and imp["tolerance"] == 1e-10
-    assert imp["adr_iterations"] * 20 < adr["adr_iterations"]
+    assert imp["iterations"] * 20 < adr["iterations"]
     for k in ("swelling_strain_x", "swelling_strain_y"):
         assert imp[k][-1] == pytest.approx(adr[k][-1], rel=1e-3)
     for kind, d in adr["per_kind"].items():
@@ -283,12 +331,12 @@ def test_implicit_solver_with_damage_cracks_as_the_adr(tmp_path):
     args = ("--scenario", "isr", "--behaviour", "elastic", "--steps-per-decade", "10")
     imp, _ = swelling_test(tmp_path / "implicit", *args, "--solver", "implicit")
     adr, _ = swelling_test(tmp_path / "adr", *args, "--solver", "adr")
-    print("measured", {k: (imp[f"broken_{k}"][-1], adr[f"broken_{k}"][-1], imp["n_contacts_by_kind"][k]) for k in imp["n_contacts_by_kind"]},
-          imp["swelling_strain_x"][-1], adr["swelling_strain_x"][-1], imp["adr_iterations"], adr["adr_iterations"])
+    print("measured", {k: (imp["per_kind"][k]["broken"][-1], adr["per_kind"][k]["broken"][-1], imp["n_contacts_by_kind"][k]) for k in imp["n_contacts_by_kind"]},
+          imp["swelling_strain_x"][-1], adr["swelling_strain_x"][-1], imp["iterations"], adr["iterations"])
     assert imp["solver"] == "implicit" and imp["status"] == "finished"
-    assert imp["broken_ITZ"][-1] > 0, "the specimen must crack for this test to test anything"
+    assert imp["per_kind"]["ITZ"]["broken"][-1] > 0, "the specimen must crack for this test to test anything"
     for k, n in imp["n_contacts_by_kind"].items():
-        assert abs(imp[f"broken_{k}"][-1] - adr[f"broken_{k}"][-1]) <= 0.05 * n, k
+        assert abs(imp["per_kind"][k]["broken"][-1] - adr["per_kind"][k]["broken"][-1]) <= 0.05 * n, k
     for k in ("swelling_strain_x", "swelling_strain_y"):
         assert imp[k][-1] == pytest.approx(adr[k][-1], rel=1e-1)
 

@@ -47,7 +47,7 @@ def test_solver_param_changes_the_run(fallback_runs):
     """fallbackIterations=3 hands the cracking steps to dynamic relaxation (results.json
     fallback_steps), which the default (5000) does not; the setting is recorded as given and as run."""
     ref, low = fallback_runs
-    assert sum(ref["broken_MORTAR"][-1:] + ref["broken_ITZ"][-1:]) > 0, "the run cracks"
+    assert sum(ref["per_kind"]["MORTAR"]["broken"][-1:] + ref["per_kind"]["ITZ"]["broken"][-1:]) > 0, "the run cracks"
     assert ref["fallback_steps"] == [] and len(low["fallback_steps"]) > 0, (ref["fallback_steps"], low["fallback_steps"])
     assert low["config"]["solver_params"] == {"fallbackIterations": 3}
     assert low["solver_settings"]["fallbackIterations"] == 3 and ref["solver_settings"]["fallbackIterations"] == 5000

@@ -81,9 +81,10 @@ class StepRecorder:
     displacement [m] per axis (0 without platens), the largest and the mean bar stress [Pa] (with bars), the unbalanced-force ratio, the step's
     iterations and round-off flag, and per contact kind the 5 % / 95 % normal-force quantiles
     [kN], the broken contacts (bonded at the start, broken since) and the contacts made during
-    the run (born broken, 'born_broken', present at the step); sets 'unbalanced_history' (the
-    solver's records of the unbalanced-force ratio every historyEvery iterations: 'iteration',
-    cumulative [-], and 'ratio' [-]) and, once, 'tensile_capacity_kN' (tensile_capacity()); then
+    the run (born broken, 'born_broken', present at the step), under 'per_kind'; sets the
+    solver's iterations so far ('iterations', split into 'newton_iterations' and
+    'relaxation_iterations'), 'unbalanced_history' (the solver's records of the unbalanced-force
+    ratio every historyEvery iterations: 'iteration', cumulative [-], and 'ratio' [-]) and, once, 'tensile_capacity_kN' (tensile_capacity()); then
     rewrites results.json and BREAKS_FILE (the step index into times_days at which each bonded
     contact broke, -1 while intact) in `out` (a run that stops later keeps what it had) and, every
     vtk_every steps (0: none), the step's VTK files into out/vtk/ (swelldem.dem.vtk_series; the
@@ -129,7 +130,7 @@ class StepRecorder:
             r["rebar_stress_mean_Pa"].append(smean)
             r["rebar"]["yield_day"] = self.bars.yield_day
         r["unbalanced_ratio"].append(solver.unbalanced)
-        r["adr_iterations_per_step"].append(int(solver.stepIterations[-1]))
+        r["iterations_per_step"].append(int(solver.stepIterations[-1]))
         round_off = getattr(solver, "stepRoundOff", None)  # a solver without a round-off stop has none
         r["step_at_round_off"].append(bool(round_off[-1]) if round_off else False)
         for k, name in enumerate(KIND_NAMES):
@@ -139,7 +140,13 @@ class StepRecorder:
             r["per_kind"][name]["fn_p95_kN"].append(q95)
             r["per_kind"][name]["broken"].append(int((broken & bonded)[sel].sum()))
             r["per_kind"][name].setdefault("born_broken", []).append(int((~bonded)[sel].sum()))
-        r["adr_iterations"] = solver.totalIterations
+        r["iterations"] = solver.totalIterations
+        # An iteration of the implicit solver is a Newton iteration or one of dynamic relaxation (its
+        # relaxation phases and fallback), which it counts apart; every ADR iteration is one of
+        # dynamic relaxation, and the ADR has no such count.
+        relaxation = getattr(solver, "relaxationIterations", None)
+        r["relaxation_iterations"] = int(solver.totalIterations if relaxation is None else relaxation)
+        r["newton_iterations"] = int(solver.totalIterations) - r["relaxation_iterations"]
         r["fallback_steps"] = fallback_steps(solver)
         r["n_steps"] = int(solver.nSteps)  # the run's physical steps, done or not: a run that stopped has fewer times_days
         r["unbalanced_history"] = {"every": int(getattr(solver, "historyEvery", 0)),

@@ -83,17 +83,11 @@ def concrete_ip2(kinds, **attrs):
     return W.Ip2_ConcreteMat_ConcreteMat_SwellPhys(**{name.lower(): kind for name, kind in kinds.items()}, **attrs)
 
 
-def kind_attributes():
-    """The names of ContactKind's attributes (settable by keyword or per kind from the command line)."""
-    _, W = _yade()
-    return sorted(W.ContactKind().dict())
-
-
 def check_kind_attributes(attrs, where):
     """ValueError naming the first of `attrs` (names) that ContactKind does not have."""
     if not attrs:
         return
-    known = kind_attributes()
+    known = kind_setting_names()
     for a in attrs:
         if a not in known:
             raise ValueError(f"swelldem: {where} attribute = {a!r} is out of range; allowed: {', '.join(known)}")
@@ -113,19 +107,30 @@ def _solver_class(name):
     return cls
 
 
-def solver_setting_names(name):
-    """The settings of solver `name` (a SOLVERS key): the attributes its plugin class and
-    LogTimeSolver flag swelldem_attr::Setting, i.e. those that Python may write and that the
-    object's dict() shows (results are read-only, internals not shown; YADE's own Engine
-    attributes, such as label, are not the solver's settings). Sorted."""
-    cls = _solver_class(name)
-    _, W = _yade()
+def _setting_names(cls, yade_base):
+    """The attributes that cls and its bases below the YADE class `yade_base` flag
+    swelldem_attr::Setting: those that Python may write and that the object's dict() shows
+    (results are read-only, internals not shown; the attributes of YADE's own classes, such as an
+    engine's label, are not swelldem's settings). Sorted."""
     own = set()
     for c in cls.__mro__:
-        if c is W.GlobalEngine:
+        if c is yade_base:
             break
         own |= {k for k, v in vars(c).items() if isinstance(v, property) and v.fset is not None}
     return sorted(own & set(cls().dict()))
+
+
+def _as_run(obj, names):
+    """{name: value} of obj's attributes `names` as JSON takes them (lists for the plugin's vectors)."""
+    return {k: (list(v) if not isinstance(v, (str, bytes)) and hasattr(v, "__len__") else v)
+            for k, v in ((k, getattr(obj, k)) for k in names)}
+
+
+def solver_setting_names(name):
+    """The settings of solver `name` (a SOLVERS key): the attributes its plugin class and
+    LogTimeSolver flag swelldem_attr::Setting (see _setting_names). Sorted."""
+    _, W = _yade()
+    return _setting_names(_solver_class(name), W.GlobalEngine)
 
 
 def solver_defaults(name):
@@ -138,8 +143,33 @@ def solver_settings(solver):
     """{setting: value} of a solver object, as it runs (lists for the plugin's vectors): what
     results.json records as solver_settings."""
     name = next(n for n, c in SOLVERS.items() if type(solver).__name__ == c)
-    return {k: (list(v) if not isinstance(v, (str, bytes)) and hasattr(v, "__len__") else v)
-            for k, v in ((k, getattr(solver, k)) for k in solver_setting_names(name))}
+    return _as_run(solver, solver_setting_names(name))
+
+
+def kind_setting_names():
+    """The settings of ContactKind: name, kindId, behaviour and every per-kind parameter (the
+    attributes its plugin class flags swelldem_attr::Setting, see _setting_names). Sorted."""
+    _, W = _yade()
+    return _setting_names(W.ContactKind, W.Serializable)
+
+
+def kind_settings(kind):
+    """{setting: value} of a ContactKind as it runs (every setting of the class, lists for the
+    plugin's vectors): what results.json records per kind under 'kinds'."""
+    return _as_run(kind, kind_setting_names())
+
+
+def functor_kinds(functor):
+    """{kind name: ContactKind} of the ContactKinds a functor holds (the Ip2's kinds: those its
+    attributes hold, alone or in a list), in kindId order; the kinds of a scene, whatever set them
+    (the scenario's three, the bars', the platens')."""
+    _, W = _yade()
+    found = []
+    for v in functor.dict().values():
+        for k in (v if isinstance(v, (list, tuple)) else [v]):
+            if isinstance(k, W.ContactKind):
+                found.append(k)
+    return {k.name: k for k in sorted(found, key=lambda k: k.kindId)}
 
 
 def check_solver_settings(name, attrs, where="solver_params"):
