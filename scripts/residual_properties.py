@@ -36,7 +36,7 @@ ap.add_argument("--sdt-steps", type=int, default=5,
 ap.add_argument("--strain-step-tension", type=float, default=4e-6, help="strain increment per ADR step, tension test [-]")
 ap.add_argument("--strain-step-compression", type=float, default=25e-6, help="strain increment per ADR step, compression and SDT [-]")
 ap.add_argument("--test-tolerance", type=float, default=1e-4,
-                help="unbalanced-force tolerance of the tests' steps (0: the solver's own) [-]")
+                help="unbalanced-force tolerance of the tests' steps (0 < tolerance < 1) [-]")
 ap.add_argument("--test-solver", default="adr", help="quasi-static solver of the tests: adr or implicit (see docs/residual-properties.md)")
 ap.add_argument("--reference-cache", default="",
                 help="folder where the undamaged specimen's tests are kept and reused (same seed, size, age, kinds and test "
@@ -63,8 +63,8 @@ try:
             residual._bad(name, f"{v:g}", "0 < step < 1e-3 [-]")
     if not args.sdt_steps >= 1:
         residual._bad("--sdt-steps", args.sdt_steps, "an integer >= 1")
-    if not (0 <= args.test_tolerance < 1):
-        residual._bad("--test-tolerance", f"{args.test_tolerance:g}", "0 <= tolerance < 1 [-] (0: the solver's own)")
+    if not (0 < args.test_tolerance < 1):
+        residual._bad("--test-tolerance", f"{args.test_tolerance:g}", "0 < tolerance < 1 [-]")
     if args.test_solver not in ("adr", "implicit"):
         residual._bad("--test-solver", args.test_solver, "adr, implicit")
 except ValueError as e:

@@ -329,7 +329,7 @@ def run_test(assembly, mode, legs, age_days, n_idle=0, max_steps=400, tolerance=
     extra = (age_days + span * np.arange(1, n) / n).tolist()
     settings = dict(tStart=age_days, tEnd=age_days + span, stepsPerDecade=1e-3, extraTimes=extra, maxIterations=max_iterations,
                     verbose=False, label="residualSolver")
-    if tolerance:  # None or 0: the solver's own (ADR 1e-4, implicit 1e-10)
+    if tolerance is not None:  # None: the solver's own (its class's default)
         settings["tolerance"] = tolerance
     solver = make_solver(solver_name, **settings)
     engines = [e for e in O.engines if not hasattr(e, "stepHook")]
