@@ -703,6 +703,17 @@ void ImplicitLogTimeSolver::relaxIteration(const Balance& b)
 	++relaxationIterations;
 }
 
+void ImplicitLogTimeSolver::syncShearMode()
+{
+	// A step handed to dynamic relaxation takes the shear as the ADR does, YADE's incremental vector
+	// (the contacts' current shear force, ScGeom's increments), whose slip is permanent at every
+	// iteration: relaxation among sliding contacts needs that dissipation. With the shear from the
+	// step's start a slip is undone when the contact moves back, and the relaxation crawls (measured
+	// on a stiff-aggregate step: no equilibrium in 555,000 iterations where the ADR needed 133,000).
+	const bool fromStart = shearFromStepStart && !fallback;
+	if (law2->shearFromStepStart != fromStart) law2->setModes(true, fromStart);
+}
+
 void ImplicitLogTimeSolver::action()
 {
 	if (!startIteration()) return;
@@ -729,6 +740,7 @@ void ImplicitLogTimeSolver::action()
 		}
 		relaxing = false; // restarted from rest below
 	}
+	syncShearMode();
 	// The first iteration of a round measures its load before any Newton move (a step's offsets, or
 	// the forces the breaks released). Its ratio counts each contact at least with the load its
 	// offset imposes, so it starts at or below about 1: a loose tolerance would commit the unmoved
@@ -744,6 +756,7 @@ void ImplicitLogTimeSolver::action()
 		relaxing = false, newtonSince = iterInStep, relaxPhase = 0, lineAlpha = 0, heldMechanisms.clear();
 	if (out == StepOutcome::Committed) {
 		fallback = false;
+		syncShearMode(); // before the next step's first pass
 		return;
 	}
 	if (out == StepOutcome::Broke) { // the next pass computes the forces without the broken contacts

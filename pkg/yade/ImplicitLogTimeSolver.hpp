@@ -161,6 +161,7 @@ private:
 	Eigen::Matrix<Real, Eigen::Dynamic, 1> solveWithCoupling(const Eigen::Matrix<Real, Eigen::Dynamic, 1>& r); // K^-1 r, Woodbury for the coupling
 	long                                  holdMechanisms(const Eigen::Matrix<Real, Eigen::Dynamic, 1>& du); // discs newly held (mechanismMove)
 	void                                  relaxIteration(const Balance& b); // one dynamic relaxation iteration
+	void                                  syncShearMode(); // the law functor's shear mode: from the step's start, incremental in a fallback
 	void                                  moveBodies(Real fraction); // by fraction x lineMove, through the velocities
 	Real                                  residualMerit();           // |r| over the free DOFs, torques over the radius [N]; sets bodyRadius
 	std::unique_ptr<ImplicitLinearSystem> sys; // not saved: rebuilt from the scene, it gives the same factor
