@@ -727,7 +727,7 @@ void ImplicitLogTimeSolver::action()
 	// A round that Newton and its relaxation phases have not settled within fallbackIterations (an
 	// active set that keeps changing: measured on 12 mm specimens with every strength near zero, 40
 	// to 60 contacts flipping each iteration) goes on by dynamic relaxation alone for the rest of the
-	// step, to the ADR's accuracy: the ADR finishes such steps, so the default solver does too.
+	// step, to the ADR's accuracy, as the ADR takes every step.
 	if (!fallback && fallbackIterations > 0 && iterInStep - roundStart > fallbackIterations) {
 		fallback           = true;
 		fallbackRelaxStart = relaxationIterations;

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
-"""The default (implicit) solver finishes what the ADR finishes: the cases in which it stopped while
-the ADR finished, each run with both solvers, and a loose tolerance that must not be met by a step
+"""The default (implicit) solver finishes the runs in which it stopped while the ADR finished, each
+run with both solvers, and a loose tolerance that must not be met by a step
 that has not moved. 12 mm specimens, real YADE; the table over three seeds is
 scripts/bench/bench_extremes.py (docs/performance.md section 5). Apart from test_extremes.py so
 that the two files run on two workers."""
