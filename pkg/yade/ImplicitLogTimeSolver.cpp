@@ -711,7 +711,7 @@ void ImplicitLogTimeSolver::syncShearMode()
 	// step's start a slip is undone when the contact moves back, and the relaxation crawls (measured
 	// on a stiff-aggregate step: no equilibrium in 555,000 iterations where the ADR needed 133,000).
 	const bool fromStart = shearFromStepStart && !fallback;
-	if (law2->shearFromStepStart != fromStart) law2->setModes(true, fromStart);
+	if (law2->shearFromStepStart != fromStart) law2->setLogTimeModes(fromStart);
 }
 
 void ImplicitLogTimeSolver::action()

@@ -70,9 +70,10 @@ void KindLaws::beginStep(const std::vector<const ContactKind*>& kinds, Real shor
 		}
 		const size_t hidden = law ? law->hiddenStateSize() : 0;
 		build(*e, *e->kind, p);
-		if (law && window.serial > 1 && e->law.load(std::memory_order_relaxed)->hiddenStateSize() != hidden)
+		const size_t now = e->law.load(std::memory_order_relaxed)->hiddenStateSize();
+		if (law && window.serial > 1 && now != hidden)
 			throw std::invalid_argument("swelldem: ContactKind '" + e->kind->name + "': this change gives its Kelvin chain "
-			                            + std::to_string(e->law.load()->hiddenStateSize() / 2) + " units instead of "
+			                            + std::to_string(now / 2) + " units instead of "
 			                            + std::to_string(hidden / 2)
 			                            + " while its contacts have a creep history; allowed during a run: changes that keep the chain "
 			                              "(behaviour, kelvinUnitsPerDecade and the lags as they were)");

@@ -31,6 +31,12 @@ struct StepWindow {
 	}
 };
 
+} // namespace yade
+BOOST_CLASS_IMPLEMENTATION(yade::StepWindow, boost::serialization::object_serializable)
+BOOST_CLASS_TRACKING(yade::StepWindow, boost::serialization::track_never)
+
+namespace yade {
+
 class KindLaws {
 public:
 	/// The step lives with the owner, which saves it.

@@ -21,9 +21,9 @@ void Law2_ScGeom_SwellPhys_AgingSwelling::beginContactStep(SwellPhys& p, const V
 	p.stepSerial = window.serial;
 }
 
-void Law2_ScGeom_SwellPhys_AgingSwelling::setModes(bool atEquilibrium, bool fromStepStart)
+void Law2_ScGeom_SwellPhys_AgingSwelling::setLogTimeModes(bool fromStepStart)
 {
-	breaksAtEquilibrium = atEquilibrium;
+	breaksAtEquilibrium = true;
 	shearFromStepStart  = fromStepStart;
 }
 

@@ -55,8 +55,9 @@ public:
 	/// The run's laws, for the step `window`.
 	KindLaws                    laws { window };
 	swelldem::core::ContactLaw& lawFor(const ContactKind& kind) { return laws.lawFor(kind); }
-	/// Set once by a log-time solver at its start.
-	void setModes(bool atEquilibrium, bool fromStepStart);
+	/// A log-time solver's modes: breaks at equilibrium only, and the shear from the step's start
+	/// (ImplicitLogTimeSolver, but for a step it hands to dynamic relaxation) or incremental.
+	void setLogTimeModes(bool fromStepStart);
 	/// Commits a converged step (hidden strains, committed forces, reference opening).
 	void commit(SwellPhys& p);
 	/// At equilibrium (the log-time solvers): breaks an intact contact of a damaging kind whose

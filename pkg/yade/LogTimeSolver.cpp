@@ -99,7 +99,7 @@ void LogTimeSolver::zeroVelocities(Scene* scene)
 void LogTimeSolver::findLaw()
 {
 	law2 = sceneLaw(scene, getClassName());
-	law2->setModes(true, shearFromStepStart);
+	law2->setLogTimeModes(shearFromStepStart);
 }
 
 void LogTimeSolver::refreshKinds()
