@@ -54,8 +54,9 @@ public:
 	  "Relative diagonal shift of the tangent for local mechanisms (a disc held by one contact, open cracks): it changes "                         \
 	  "the iteration path, never the converged equilibrium, which is YADE's residual at the tolerance [-]")                                         \
 	X(Real, rotationRegularization, 1e-3, swelldem_attr::Setting,                                                                                       \
-	  "Relative diagonal shift of the tangent's rotations: a disc held by one contact can roll about it (no stiffness in the tangent), and "     \
-	  "the shift bounds its move along that mode; rotations converge by this factor an iteration, the equilibrium is YADE's residual [-]")      \
+	  "Diagonal shift of the tangent's rotations, relative to each disc's own diagonal and at most to the median disc's: a disc held by one "  \
+	  "contact can roll about it (no stiffness in the tangent), and the shift bounds its move along that mode; rotations converge by this "    \
+	  "factor an iteration, the equilibrium is YADE's residual [-]")                                                                                \
 	X(Real, refactorTolerance, 1e-3, swelldem_attr::Setting,                                                                                            \
 	  "The Cholesky factor is kept while no entry of the tangent differs from the factored one by more than this fraction of the largest "    \
 	  "entry (the geometry moving within a step; a state change, a break or an aging kind's new step differ by far more); the iteration is "   \
@@ -155,6 +156,7 @@ private:
 	char                                  addContact(size_t c, bool lowRank); // its entries and columns; its state
 	void                                  addStiffnessChange(size_t c, Real kn, Real ks, const Real* bn, const Real* bs, Real& kA, Real& sA);
 	void                                  shiftDiagonal(Real kLoose);         // regularization, loose DOFs, rotations
+	Real                                  rotationShift(Real diagonal) const; // of a rotation's diagonal entry
 	void                                  addDiagonalColumns(const std::vector<Real>& raw, Real kLoose);
 	bool                                  needsFactor(bool freshFactor) const; // K no longer within refactorTolerance and lowRankChanges of the factor
 	void                                  factor();
