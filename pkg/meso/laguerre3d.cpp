@@ -20,9 +20,9 @@
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <numeric>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -280,11 +280,11 @@ FaceGeometry face_geometry(const ConvexCell& cell, const ConvexCell::Face& F) {
   return g;
 }
 
+// Shortest text that reads back as v, so a message shows the value as the caller wrote it.
 std::string num(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
+  char buf[64];
+  const auto res = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, res.ptr);
 }
 
 void validate(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& z,
