@@ -79,8 +79,8 @@ SWD_API long swd_laguerre_rectangle(long n, const double* x, const double* y, co
  *   fcentroid[3k..]    centroid of the facet polygon;
  *   polygons, only if fverts is not NULL (then fvoff is required): the vertices of
  *   facet k are fverts[3 fvoff[k] .. 3 fvoff[k+1] - 1] (x, y, z each), counter-clockwise
- *   about fnormal[k]; fvoff has m + 1 entries, fverts room for `vcapacity` vertices.
- *   fvoff alone (fverts NULL) still receives the offsets.
+ *   about fnormal[k]; fvoff needs room for capacity + 1 entries (m + 1 are written),
+ *   fverts for `vcapacity` vertices. fvoff alone (fverts NULL) still receives the offsets.
  * needed (may be NULL) receives 2 longs, the number of facets and of polygon
  * vertices, as soon as the diagram is made, so that a caller whose capacity was too
  * small can call again with enough.
