@@ -320,3 +320,34 @@ def test_size_mismatch_refused():
         _call(z=[0.5])
     with pytest.raises(ValueError, match="1-D"):
         _call(r=[[0.4, 0.4]])
+
+
+def test_capacity_too_small_reports_what_is_needed():
+    # The C entry's contract the binding relies on to call again: -1, the error, and `needed`.
+    import ctypes
+    c, box = simple_cubic(1.0, 3, 2, 2)
+    r = np.full(len(c), 0.5)
+    full = laguerre(c, r, box)
+    x, y, z = (np.ascontiguousarray(c[:, k]) for k in range(3))
+    L = _geom._LONG
+    fi, fj = np.empty(1, np.int32), np.empty(1, np.int32)
+    fa, fn, fc = np.empty(1), np.empty(3), np.empty(3)
+    fo, fv = np.empty(2, L), np.empty(3)
+    vol, ba, needed = np.empty(len(r)), np.empty(6 * len(r)), np.zeros(2, L)
+    ip, lp = ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_long)
+    p = _geom._ptr
+    m = _geom.lib().swd_laguerre_box(len(r), p(x), p(y), p(z), p(r), *box, 1, 1, p(fi, ip), p(fj, ip), p(fa), p(fn),
+                                     p(fc), p(fo, lp), p(fv), p(vol), p(ba), p(needed, lp), None)
+    assert m == -1
+    assert _geom.lib().swd_geom_last_error().decode() == f"swd_laguerre_box: capacity 1 < {len(full['area'])} facets"
+    assert needed.tolist() == [len(full["area"]), len(full["polygon_vertices"])]
+
+
+def test_binding_calls_again_with_enough_room(monkeypatch):
+    c, r = random_spheres(np.random.default_rng(4), 80, (4.0, 4.0, 4.0))
+    full = laguerre(c, r, (4.0, 4.0, 4.0))
+    monkeypatch.setattr(_geom, "_FACETS_PER_SPHERE_GUESS", 0)
+    again = laguerre(c, r, (4.0, 4.0, 4.0))
+    assert len(again["area"]) == len(full["area"]) > 64
+    for k in ("area", "polygon_offset", "polygon_vertices", "box_area"):
+        assert np.array_equal(again[k], full[k])

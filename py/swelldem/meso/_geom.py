@@ -141,6 +141,9 @@ LAGUERRE3D_STAT_NAMES = ("volume_sum", "max_asymmetry", "hidden", "empty_cells",
                          "reserved1", "reserved2", "reserved3")
 #: Order of the columns of ``box_area``: the box sides and their outward normals.
 BOX_SIDES = ("x=0", "x=W", "y=0", "y=H", "z=0", "z=D")
+# Facets (pairs) a sphere allowed for at the first call: random packings have 6 to 7 pairs a sphere
+# and about 5 vertices a facet (bench_laguerre3d.py).
+_FACETS_PER_SPHERE_GUESS = 10
 BOX_NORMALS = np.array([[-1, 0, 0], [1, 0, 0], [0, -1, 0], [0, 1, 0], [0, 0, -1], [0, 0, 1]], dtype=np.float64)
 
 
@@ -177,9 +180,8 @@ def laguerre_box(x, y, z, r, width, height, depth, polygons=True):
     n = len(x)
     if len(y) != n or len(z) != n or len(r) != n:
         raise ValueError(f"x, y, z and r must have the same length (got {len(x)}, {len(y)}, {len(z)}, {len(r)})")
-    # A random packing has about 7.5 facets a sphere and 5 to 6 vertices a facet; the
-    # library says how much it needs when that is not enough, and the call is repeated.
-    cap = 10 * n + 64
+    # The library says how much it needs when the first guess is not enough; then the call is repeated.
+    cap = _FACETS_PER_SPHERE_GUESS * n + 64
     vcap = 8 * cap if polygons else 0
     area_v = np.empty(max(n, 1))
     box = np.empty(6 * max(n, 1))
