@@ -2,11 +2,13 @@
 // extern "C" entry points of swelldem_geom (see swelldem_geom.h).
 #include "swelldem_geom.h"
 
+#include <algorithm>
 #include <exception>
 #include <string>
 
 #include "core/PairKind.hpp"
 #include "laguerre.hpp"
+#include "laguerre3d.hpp"
 #include "packing.hpp"
 
 namespace {
@@ -97,6 +99,67 @@ long swd_laguerre_rectangle(long n, const double* x, const double* y, const doub
     return fail(std::string("swd_laguerre_rectangle: ") + e.what());
   } catch (...) {
     return fail("swd_laguerre_rectangle: unknown error");
+  }
+}
+
+long swd_laguerre_box(long n, const double* x, const double* y, const double* z, const double* r, double width,
+                      double height, double depth, long capacity, long vcapacity, int* fi, int* fj, double* farea,
+                      double* fnormal, double* fcentroid, long* fvoff, double* fverts, double* cell_volume,
+                      double* box_area, long* needed, double* stats) {
+  g_last_error.clear();
+  try {
+    if (n < 0) return fail("swd_laguerre_box: n = " + std::to_string(n) + " must be >= 0");
+    if (n > 0 && (!x || !y || !z || !r)) return fail("swd_laguerre_box: null input buffer");
+    if (!fi || !fj || !farea || !fnormal || !fcentroid || (n > 0 && (!cell_volume || !box_area)))
+      return fail("swd_laguerre_box: null output buffer");
+    if (fverts && !fvoff) return fail("swd_laguerre_box: fverts given without fvoff");
+    std::vector<double> vx(x, x + n), vy(y, y + n), vz(z, z + n), vr(r, r + n);
+    auto res = swelldem::meso::laguerre_box(vx, vy, vz, vr, width, height, depth);
+    const long m = long(res.facets.size());
+    const long nv = long(res.poly.size()) / 3;
+    if (needed) {
+      needed[0] = m;
+      needed[1] = nv;
+    }
+    if (m > capacity)
+      return fail("swd_laguerre_box: capacity " + std::to_string(capacity) + " < " + std::to_string(m) + " facets");
+    if (fverts && nv > vcapacity)
+      return fail("swd_laguerre_box: vcapacity " + std::to_string(vcapacity) + " < " + std::to_string(nv) +
+                  " polygon vertices");
+    for (long k = 0; k < n; ++k) {
+      cell_volume[k] = res.cell_volume[k];
+      for (int s = 0; s < 6; ++s) box_area[6 * k + s] = res.box_area[k][s];
+    }
+    for (long k = 0; k < m; ++k) {
+      const auto& f = res.facets[k];
+      fi[k] = f.i;
+      fj[k] = f.j;
+      farea[k] = f.area;
+      for (int a = 0; a < 3; ++a) {
+        fnormal[3 * k + a] = f.normal[a];
+        fcentroid[3 * k + a] = f.centroid[a];
+      }
+      if (fvoff) fvoff[k] = f.poly_begin;
+    }
+    if (fvoff) fvoff[m] = nv;
+    if (fverts) std::copy(res.poly.begin(), res.poly.end(), fverts);
+    if (stats) {
+      stats[0] = res.volume_sum;
+      stats[1] = res.max_asymmetry;
+      stats[2] = double(res.hidden);
+      stats[3] = double(res.empty_cells);
+      stats[4] = double(res.dimension);
+      stats[5] = double(res.neighbour_pairs);
+      stats[6] = double(res.zero_area);
+      stats[7] = res.zero_threshold;
+      stats[8] = double(res.cap_sorts);
+      stats[9] = stats[10] = stats[11] = 0;
+    }
+    return m;
+  } catch (const std::exception& e) {
+    return fail(std::string("swd_laguerre_box: ") + e.what());
+  } catch (...) {
+    return fail("swd_laguerre_box: unknown error");
   }
 }
 

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-2.0-or-later */
 /*
- * swelldem_geom: C API of the YADE-free 2D geometry library of swelldem.
+ * swelldem_geom: C API of the YADE-free geometry library of swelldem.
  *
  * Lengths are in any consistent unit (the Python side passes millimetres);
  * areas are in that unit squared. Every function returns a negative value on
@@ -62,6 +62,43 @@ SWD_API long swd_laguerre_rectangle(long n, const double* x, const double* y, co
                                     double width, double height, long capacity,
                                     int* fi, int* fj, double* flen, double* fseg,
                                     double* cell_area, double* stats);
+
+/*
+ * Laguerre (power) diagram of n spheres (weights r^2) with CGAL's 3D regular
+ * triangulation, each cell clipped to the box [0,W]x[0,H]x[0,D] (W = width,
+ * H = height, D = depth). Radii must be > 0 and the centres inside the box.
+ * Outputs:
+ *   cell_volume[n]     volume of every clipped cell;
+ *   box_area[6n]       per sphere, its cell's area on the box sides x = 0, x = W,
+ *                      y = 0, y = H, z = 0, z = D (outward normals -x, +x, -y, +y, -z, +z);
+ *   facets (at most `capacity`), one for every pair i < j whose clipped cells share
+ *   a face of area above the threshold stats[7], sorted by (i, j):
+ *   fi[k], fj[k]       the two sphere indices,
+ *   farea[k]           facet area (mean of the areas seen from both cells),
+ *   fnormal[3k..3k+2]  unit normal from centre i towards centre j,
+ *   fcentroid[3k..]    centroid of the facet polygon;
+ *   polygons, only if fverts is not NULL (then fvoff is required): the vertices of
+ *   facet k are fverts[3 fvoff[k] .. 3 fvoff[k+1] - 1] (x, y, z each), counter-clockwise
+ *   about fnormal[k]; fvoff needs room for capacity + 1 entries (m + 1 are written),
+ *   fverts for `vcapacity` vertices. fvoff alone (fverts NULL) still receives the offsets.
+ * needed (may be NULL) receives 2 longs, the number of facets and of polygon
+ * vertices, as soon as the diagram is made, so that a caller whose capacity was too
+ * small can call again with enough.
+ * stats (may be NULL) receives 12 doubles:
+ *   [0] sum of cell volumes, [1] max |area seen from i - area seen from j| over
+ *   all neighbour pairs, [2] spheres hidden in the triangulation (no cell; 0 for
+ *   non-overlapping spheres), [3] cells of zero volume (the hidden ones included),
+ *   [4] triangulation dimension, [5] neighbour pairs of the triangulation,
+ *   [6] of those, pairs without a facet (zero area, as lattices have), [7] area
+ *   threshold used for "zero", [8] clips whose new face was ordered by angle instead
+ *   of by its edges (a sign of near-degenerate input; 0 expected), [9..11] reserved (0).
+ * Returns the number of facets (>= 0) or -1.
+ */
+SWD_API long swd_laguerre_box(long n, const double* x, const double* y, const double* z, const double* r,
+                              double width, double height, double depth, long capacity, long vcapacity,
+                              int* fi, int* fj, double* farea, double* fnormal, double* fcentroid,
+                              long* fvoff, double* fverts, double* cell_volume, double* box_area,
+                              long* needed, double* stats);
 
 /*
  * Contact kind of m pairs of concrete particles from their aggregate ids (-1 mortar, >= 0 one

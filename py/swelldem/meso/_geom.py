@@ -16,6 +16,8 @@ _LIB_RELPATH = "pkg/meso/libswelldem_geom.so"
 
 _dp = ctypes.POINTER(ctypes.c_double)
 _ip = ctypes.POINTER(ctypes.c_int)
+_lp = ctypes.POINTER(ctypes.c_long)
+_LONG = np.dtype(ctypes.c_long)
 
 
 class GeometryLibraryError(RuntimeError):
@@ -44,6 +46,10 @@ def lib():
         handle.swd_laguerre_rectangle.argtypes = [
             ctypes.c_long, _dp, _dp, _dp, ctypes.c_double, ctypes.c_double, ctypes.c_long,
             _ip, _ip, _dp, _dp, _dp, _dp]
+        handle.swd_laguerre_box.restype = ctypes.c_long
+        handle.swd_laguerre_box.argtypes = [
+            ctypes.c_long, _dp, _dp, _dp, _dp, ctypes.c_double, ctypes.c_double, ctypes.c_double,
+            ctypes.c_long, ctypes.c_long, _ip, _ip, _dp, _dp, _dp, _lp, _dp, _dp, _dp, _lp, _dp]
         handle.swd_pair_kinds.restype = ctypes.c_long
         handle.swd_pair_kinds.argtypes = [ctypes.c_long, _ip, _ip, _ip]
         _LIB = handle
@@ -129,6 +135,91 @@ def laguerre_rectangle(x, y, r, width, height):
         stats[k] = int(stats[k])
     return {"cell_area": area[:n].copy(), "i": fi[:m].copy(), "j": fj[:m].copy(),
             "length": fl[:m].copy(), "segment": fs[:4 * m].reshape(m, 4).copy(), "stats": stats}
+
+LAGUERRE3D_STAT_NAMES = ("volume_sum", "max_asymmetry", "hidden", "empty_cells", "dimension",
+                         "neighbour_pairs", "zero_area_pairs", "zero_threshold", "cap_sorts",
+                         "reserved1", "reserved2", "reserved3")
+#: Order of the columns of ``box_area``: the box sides and their outward normals.
+BOX_SIDES = ("x=0", "x=W", "y=0", "y=H", "z=0", "z=D")
+# Facets (pairs) a sphere allowed for at the first call: random packings have 6 to 7 pairs a sphere
+# and about 5 vertices a facet (bench_laguerre3d.py).
+_FACETS_PER_SPHERE_GUESS = 10
+BOX_NORMALS = np.array([[-1, 0, 0], [1, 0, 0], [0, -1, 0], [0, 1, 0], [0, 0, -1], [0, 0, 1]], dtype=np.float64)
+
+
+def laguerre_box(x, y, z, r, width, height, depth, polygons=True):
+    """Laguerre (power) cells of spheres clipped to the box [0,width]x[0,height]x[0,depth].
+
+    Any length unit L (the generator uses mm); centres must lie in the box and radii be > 0.
+    Power of a point p for sphere k: |p - c_k|^2 - r_k^2. Returns a dict of numpy arrays:
+
+    - ``cell_volume`` (n) [L^3]: volume of every clipped cell;
+    - ``box_area`` (n x 6) [L^2]: each cell's area on the box sides ``BOX_SIDES``
+      (x=0, x=W, y=0, y=H, z=0, z=D; outward normals ``BOX_NORMALS``);
+    - for the m pairs i < j whose cells share a face of area above ``stats["zero_threshold"]``,
+      sorted by (i, j): ``i``, ``j`` (int32), ``area`` (m) [L^2, mean of the areas seen from
+      both cells], ``normal`` (m x 3, unit, from centre i towards centre j) and ``centroid``
+      (m x 3) [L];
+    - with ``polygons``: ``polygon_offset`` (m + 1, C long) and ``polygon_vertices`` (k x 3) [L]:
+      facet q is ``polygon_vertices[polygon_offset[q]:polygon_offset[q + 1]]``, counter-clockwise
+      about its normal;
+    - ``stats``: ``volume_sum`` [L^3], ``max_asymmetry`` [L^2] (max difference of a pair's area
+      seen from its two cells), ``hidden`` (spheres without a cell in the triangulation),
+      ``empty_cells`` (zero volume, hidden included), ``dimension`` (of the triangulation),
+      ``neighbour_pairs`` (its edges), ``zero_area_pairs`` (edges without a facet),
+      ``zero_threshold`` [L^2] and ``cap_sorts`` (clips ordered by angle; 0 expected).
+
+    Raises GeometryLibraryError on bad input (the message names the argument and its range).
+    """
+    x = np.ascontiguousarray(x, dtype=np.float64)
+    y = np.ascontiguousarray(y, dtype=np.float64)
+    z = np.ascontiguousarray(z, dtype=np.float64)
+    r = np.ascontiguousarray(r, dtype=np.float64)
+    if not (x.ndim == y.ndim == z.ndim == r.ndim == 1):
+        raise ValueError("x, y, z and r must be 1-D arrays")
+    n = len(x)
+    if len(y) != n or len(z) != n or len(r) != n:
+        raise ValueError(f"x, y, z and r must have the same length (got {len(x)}, {len(y)}, {len(z)}, {len(r)})")
+    # The library says how much it needs when the first guess is not enough; then the call is repeated.
+    cap = _FACETS_PER_SPHERE_GUESS * n + 64
+    vcap = 8 * cap if polygons else 0
+    area_v = np.empty(max(n, 1))
+    box = np.empty(6 * max(n, 1))
+    st = np.zeros(12)
+    needed = np.zeros(2, dtype=_LONG)
+    for _ in range(2):
+        fi = np.empty(cap, dtype=np.int32)
+        fj = np.empty(cap, dtype=np.int32)
+        fa = np.empty(cap)
+        fn = np.empty(3 * cap)
+        fc = np.empty(3 * cap)
+        fo = np.empty(cap + 1, dtype=_LONG)
+        fv = np.empty(3 * max(vcap, 1))
+        m = lib().swd_laguerre_box(n, _ptr(x), _ptr(y), _ptr(z), _ptr(r), float(width), float(height),
+                                   float(depth), cap, vcap, _ptr(fi, _ip), _ptr(fj, _ip), _ptr(fa), _ptr(fn),
+                                   _ptr(fc), _ptr(fo, _lp), _ptr(fv) if polygons else None, _ptr(area_v),
+                                   _ptr(box), _ptr(needed, _lp), _ptr(st))
+        if m >= 0:
+            break
+        if needed[0] <= cap and (not polygons or needed[1] <= vcap):
+            _raise()
+        cap, vcap = max(cap, int(needed[0])), max(vcap, int(needed[1])) if polygons else 0
+    else:
+        _raise()
+    stats = dict(zip(LAGUERRE3D_STAT_NAMES, st.tolist()))
+    for k in ("reserved1", "reserved2", "reserved3"):
+        stats.pop(k)
+    for k in ("hidden", "empty_cells", "dimension", "neighbour_pairs", "zero_area_pairs", "cap_sorts"):
+        stats[k] = int(stats[k])
+    out = {"cell_volume": area_v[:n].copy(), "box_area": box[:6 * n].reshape(n, 6).copy(),
+           "i": fi[:m].copy(), "j": fj[:m].copy(), "area": fa[:m].copy(),
+           "normal": fn[:3 * m].reshape(m, 3).copy(), "centroid": fc[:3 * m].reshape(m, 3).copy(),
+           "stats": stats}
+    if polygons:
+        nv = int(fo[m])
+        out["polygon_offset"] = fo[:m + 1].copy()
+        out["polygon_vertices"] = fv[:3 * nv].reshape(nv, 3).copy()
+    return out
 
 
 def pair_kinds(aggregate1, aggregate2):
