@@ -12,7 +12,7 @@ struct Packing3DStats {
   long sweeps = 0;             // overlap-removal sweeps over all spheres
   long pushes = 0;             // pair separations made in those sweeps
   long removed = 0;            // spheres dropped to unjam the relaxation
-  double near_contacts = 0;    // pairs with a gap below 1e-6 rmax, per sphere (x2 = coordination)
+  double near_contacts = 0;    // pairs with a gap below 0.025 rmax, per sphere (x2 = coordination)
   double max_overlap_rel = 0;  // max overlap / rmax found by the final check (<= 0: none)
 };
 

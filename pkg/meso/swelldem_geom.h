@@ -43,8 +43,9 @@ SWD_API long swd_pack_rectangle(double width, double height, double rmin, double
  * Random packing of non-overlapping spheres in the box [0,W]x[0,H]x[0,D]
  * (W = width, H = height, D = depth), radii drawn uniformly in [rmin, rmax] from a
  * generator seeded with `seed`, every sphere inside the box. Collective rearrangement:
- * radii filling 0.62 of the box at random centres, then overlapping pairs pushed apart
- * just past contact until none overlaps (see pkg/meso/packing3d.cpp). Spheres are numbered
+ * radii filling 0.60 of the box at random centres, then overlapping pairs of slightly
+ * inflated spheres pushed apart until none overlaps at the true radii (see
+ * pkg/meso/packing3d.cpp). Spheres are numbered
  * in Morton (Z-curve) order of the cubic cells of side rmin that hold their centres (one
  * centre a cell at most). Writes at most `capacity` spheres to x, y, z, r.
  * stats (may be NULL) receives 8 doubles:
@@ -52,7 +53,7 @@ SWD_API long swd_pack_rectangle(double width, double height, double rmin, double
  *   [2] density of the radii drawn (before spheres were dropped), [3] overlap-removal
  *   sweeps, [4] pair pushes in them, [5] max overlap found by the final check (relative
  *   to rmax; <= 0 means none), [6] spheres dropped to unjam the relaxation,
- *   [7] pairs with a gap below 1e-6 rmax, per sphere.
+ *   [7] pairs with a gap below 0.025 rmax (near-contacts), per sphere.
  * Returns the number of spheres (>= 0) or -1 (bad argument, capacity too small).
  * A safe capacity is floor(W H D / (4/3 pi rmin^3)) + 16.
  */

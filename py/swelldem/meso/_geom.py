@@ -118,15 +118,15 @@ def pack_box(width, height, depth, rmin, rmax, seed):
 
     Any length unit L, the same for all five lengths (the generator uses mm; [m] works as well):
     radii uniform in [rmin, rmax] [L], every sphere inside the box. Collective rearrangement
-    (pkg/meso/packing3d.cpp): radii filling 0.62 of the box at random centres, overlapping pairs
-    pushed apart just past contact until none overlaps. The spheres are numbered in Morton
+    (pkg/meso/packing3d.cpp): radii filling 0.60 of the box at random centres, overlapping pairs
+    of slightly inflated spheres pushed apart until none overlaps at the true radii. The spheres are numbered in Morton
     (Z-curve) order of the cubic cells of side rmin holding their centres.
 
     Returns (x, y, z, r, stats): numpy float64 arrays [L] and a dict: ``density`` (sphere volume /
     box volume), ``n``, ``target_density`` (of the radii drawn), ``sweeps`` and ``pushes`` (of the
     overlap removal), ``max_overlap_rel`` (worst overlap / rmax of the library's final check, <= 0
     when none), ``removed`` (spheres dropped to unjam it), ``near_contacts_per_sphere`` (pairs with a
-    gap below 1e-6 rmax, per sphere). Raises GeometryLibraryError on bad input (the message names
+    gap below 0.025 rmax, per sphere). Raises GeometryLibraryError on bad input (the message names
     the argument and its range) and ValueError on a seed outside [0, 2**64).
     """
     seed = int(seed)
