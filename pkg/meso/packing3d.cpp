@@ -44,7 +44,8 @@ namespace {
 constexpr double kTargetDensity = 0.60;
 // The relaxation moves spheres of radius r / kShrink and stops when no pair overlaps by
 // more than the shrink back to r frees: the spheres are then exactly apart, near-contacts
-// within 2 % of rmax. Relaxing to exact contact instead took 10 times the sweeps.
+// within 2 % of rmax. Relaxing to exact contact instead took more sweeps for a lower
+// density (docs/mesostructure.md).
 constexpr double kShrink = 0.99;
 // A pushed pair keeps this share of that room as overlap, so that neighbours pushed
 // later do not undo the push at once.
