@@ -10,6 +10,7 @@
 #include "laguerre.hpp"
 #include "laguerre3d.hpp"
 #include "packing.hpp"
+#include "packing3d.hpp"
 
 namespace {
 thread_local std::string g_last_error;
@@ -55,6 +56,37 @@ long swd_pack_rectangle(double width, double height, double rmin, double rmax, u
     return fail(std::string("swd_pack_rectangle: ") + e.what());
   } catch (...) {
     return fail("swd_pack_rectangle: unknown error");
+  }
+}
+
+long swd_pack_box(double width, double height, double depth, double rmin, double rmax, unsigned long long seed,
+                  long capacity, double* x, double* y, double* z, double* r, double* stats) {
+  g_last_error.clear();
+  try {
+    if (!x || !y || !z || !r) return fail("swd_pack_box: null output buffer");
+    auto p = swelldem::meso::pack_box(width, height, depth, rmin, rmax, seed);
+    const long n = long(p.r.size());
+    if (n > capacity)
+      return fail("swd_pack_box: capacity " + std::to_string(capacity) + " < " + std::to_string(n) + " spheres");
+    std::copy(p.x.begin(), p.x.end(), x);
+    std::copy(p.y.begin(), p.y.end(), y);
+    std::copy(p.z.begin(), p.z.end(), z);
+    std::copy(p.r.begin(), p.r.end(), r);
+    if (stats) {
+      stats[0] = p.stats.density;
+      stats[1] = double(n);
+      stats[2] = p.stats.target_density;
+      stats[3] = double(p.stats.sweeps);
+      stats[4] = double(p.stats.pushes);
+      stats[5] = p.stats.max_overlap_rel;
+      stats[6] = double(p.stats.removed);
+      stats[7] = p.stats.near_contacts;
+    }
+    return n;
+  } catch (const std::exception& e) {
+    return fail(std::string("swd_pack_box: ") + e.what());
+  } catch (...) {
+    return fail("swd_pack_box: unknown error");
   }
 }
 

@@ -40,6 +40,28 @@ SWD_API long swd_pack_rectangle(double width, double height, double rmin, double
                                 double* x, double* y, double* r, double* stats);
 
 /*
+ * Random packing of non-overlapping spheres in the box [0,W]x[0,H]x[0,D]
+ * (W = width, H = height, D = depth), radii drawn uniformly in [rmin, rmax] from a
+ * generator seeded with `seed`, every sphere inside the box. Collective rearrangement:
+ * radii filling 0.60 of the box at random centres, then overlapping pairs of slightly
+ * inflated spheres pushed apart until none overlaps at the true radii (see
+ * pkg/meso/packing3d.cpp). Spheres are numbered
+ * in Morton (Z-curve) order of the cubic cells of side rmin that hold their centres (one
+ * centre a cell at most). Writes at most `capacity` spheres to x, y, z, r.
+ * stats (may be NULL) receives 8 doubles:
+ *   [0] packing density (sphere volume / W H D), [1] number of spheres,
+ *   [2] density of the radii drawn (before spheres were dropped), [3] overlap-removal
+ *   sweeps, [4] pair pushes in them, [5] max overlap found by the final check (relative
+ *   to rmax; <= 0 means none), [6] spheres dropped to unjam the relaxation,
+ *   [7] pairs with a gap below 0.025 rmax (near-contacts), per sphere.
+ * Returns the number of spheres (>= 0) or -1 (bad argument, capacity too small).
+ * A safe capacity is floor(W H D / (4/3 pi rmin^3)) + 16.
+ */
+SWD_API long swd_pack_box(double width, double height, double depth, double rmin, double rmax,
+                          unsigned long long seed, long capacity,
+                          double* x, double* y, double* z, double* r, double* stats);
+
+/*
  * Laguerre (power) diagram of n discs (weights r^2) with CGAL's 2D regular
  * triangulation, each cell clipped to the rectangle [0,W]x[0,H].
  * Outputs:

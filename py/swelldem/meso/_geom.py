@@ -42,6 +42,10 @@ def lib():
         handle.swd_pack_rectangle.argtypes = [
             ctypes.c_double, ctypes.c_double, ctypes.c_double, ctypes.c_double,
             ctypes.c_ulonglong, ctypes.c_long, _dp, _dp, _dp, _dp]
+        handle.swd_pack_box.restype = ctypes.c_long
+        handle.swd_pack_box.argtypes = [
+            ctypes.c_double, ctypes.c_double, ctypes.c_double, ctypes.c_double, ctypes.c_double,
+            ctypes.c_ulonglong, ctypes.c_long, _dp, _dp, _dp, _dp, _dp]
         handle.swd_laguerre_rectangle.restype = ctypes.c_long
         handle.swd_laguerre_rectangle.argtypes = [
             ctypes.c_long, _dp, _dp, _dp, ctypes.c_double, ctypes.c_double, ctypes.c_long,
@@ -103,6 +107,46 @@ def pack_rectangle(width, height, rmin, rmax, seed):
     for k in ("n", "abandoned_pairs", "top_fill", "collapses", "enlarged"):
         stats[k] = int(stats[k])
     return x[:n].copy(), y[:n].copy(), r[:n].copy(), stats
+
+
+PACK3D_STAT_NAMES = ("density", "n", "target_density", "sweeps", "pushes", "max_overlap_rel", "removed",
+                     "near_contacts_per_sphere")
+
+
+def pack_box(width, height, depth, rmin, rmax, seed):
+    """Random packing of non-overlapping spheres in the box [0,width]x[0,height]x[0,depth].
+
+    Any length unit L, the same for all five lengths (the generator uses mm; [m] works as well):
+    radii uniform in [rmin, rmax] [L], every sphere inside the box. Collective rearrangement
+    (pkg/meso/packing3d.cpp): radii filling 0.60 of the box at random centres, overlapping pairs
+    of slightly inflated spheres pushed apart until none overlaps at the true radii. The spheres are numbered in Morton
+    (Z-curve) order of the cubic cells of side rmin holding their centres.
+
+    Returns (x, y, z, r, stats): numpy float64 arrays [L] and a dict: ``density`` (sphere volume /
+    box volume), ``n``, ``target_density`` (of the radii drawn), ``sweeps`` and ``pushes`` (of the
+    overlap removal), ``max_overlap_rel`` (worst overlap / rmax of the library's final check, <= 0
+    when none), ``removed`` (spheres dropped to unjam it), ``near_contacts_per_sphere`` (pairs with a
+    gap below 0.025 rmax, per sphere). Raises GeometryLibraryError on bad input (the message names
+    the argument and its range) and ValueError on a seed outside [0, 2**64).
+    """
+    seed = int(seed)
+    if seed < 0 or seed >= 2 ** 64:
+        raise ValueError(f"seed = {seed} must be in [0, 2**64)")
+    try:
+        cap = int(math.floor(width * height * depth / (4 / 3 * math.pi * rmin ** 3))) + 16
+    except (ZeroDivisionError, OverflowError, ValueError, TypeError):
+        cap = 16  # invalid arguments: the library reports them
+    cap = min(max(cap, 16), 100_000_000)
+    x, y, z, r = (np.empty(cap) for _ in range(4))
+    st = np.zeros(8)
+    n = lib().swd_pack_box(float(width), float(height), float(depth), float(rmin), float(rmax),
+                           ctypes.c_ulonglong(seed), cap, _ptr(x), _ptr(y), _ptr(z), _ptr(r), _ptr(st))
+    if n < 0:
+        _raise()
+    stats = dict(zip(PACK3D_STAT_NAMES, st.tolist()))
+    for k in ("n", "sweeps", "pushes", "removed"):
+        stats[k] = int(stats[k])
+    return x[:n].copy(), y[:n].copy(), z[:n].copy(), r[:n].copy(), stats
 
 
 def laguerre_rectangle(x, y, r, width, height):
