@@ -21,6 +21,7 @@ try:
 except ImportError:
     _repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     sys.path.insert(0, os.path.join(_repo, "py"))
+from swelldem import options  # noqa: E402
 
 RMAX = 0.48
 RMIN = 0.32
@@ -46,6 +47,13 @@ def main():
     if a.one is not None:
         print(json.dumps(one(a.one, a.seed)))
         return
+    with options.refuse_bad("bench_packing3d.py"):  # every option before any work, exit 2
+        for size in a.sizes_mm:
+            # pack_box needs rmax <= side / 2 and refuses more than 5e7 spheres (about a 285 mm cube)
+            options.number("sizes-mm", size, lo=2 * RMAX, hi=250, lo_incl=True, hi_incl=True, unit="mm")
+        options.integer("seed", a.seed, lo=0, hi=2 ** 64 - 1)
+        if a.json is not None:
+            options.output_file("json", a.json)
     print("| size mm | spheres | density | target | dropped | sweeps | near-contacts/sphere | wall s | peak MB |")
     print("|---|---|---|---|---|---|---|---|---|")
     rows = []
