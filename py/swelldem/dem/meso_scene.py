@@ -117,6 +117,12 @@ def to_yade(assembly, kinds, solver, reset=True, density=2400.0, young=30e9, poi
         assembly's kind.
     """
     t0 = time.time()
+    if getattr(assembly, "dim", 2) != 2:
+        # The contact law and both solvers hold one rotation and a unit thickness a particle; a
+        # box of spheres would run as a wrong 2D model, so it is refused before YADE is touched.
+        raise ValueError(f"swelldem.dem.to_yade: assembly dim = {assembly.dim} is out of range; allowed: 2 "
+                         "(the contact law and the solvers run 2D sections; a 3D assembly is generated, "
+                         "saved and viewed, not yet run)")
     yade, W = _yade()
     _check_kinds(assembly, kinds)
     n, m = assembly.n_particles, assembly.n_contacts

@@ -33,6 +33,13 @@ MAX_AGGREGATE_AREA_FRACTION = 0.6
 #: Upper bound on the number of discs, W H / (pi rmin^2), accepted.
 MAX_DISCS = 5_000_000
 
+#: Upper bound on the number of spheres, W H D / (4/3 pi rmin^3), accepted: the bound is about 3.3 times
+#: the spheres a packing holds (0.60 / 0.18 of the box at Rmin/Rmax = 2/3), so 1e6 admits a 50 mm cube
+#: (about 270,000 spheres, hours of packing on one core) and refuses a 100 mm one.
+MAX_SPHERES = 1_000_000
+
+DIMS = (2, 3)
+
 LABEL_RULES = ("centre", "inside")
 
 
@@ -55,14 +62,19 @@ class MesoParameters:
     """Parameters of :func:`swelldem.meso.generate` (lengths in mm unless the name says otherwise).
 
     Attributes:
-        width_mm, height_mm: specimen size [mm]; the specimen is [0, W] x [0, H].
-        thickness_m: out-of-plane thickness b [m]; facet area = facet length x b (paper: 1 m).
-        rmax_mm: largest disc radius [mm] (paper: 2.4 / 5 = 0.48 mm).
+        dim: 2 (a section of discs, the paper's model) or 3 (a box of spheres and polyhedral aggregates).
+        width_mm, height_mm: specimen size [mm]; the specimen is [0, W] x [0, H] (x [0, D] in 3D).
+        depth_mm: third side D of a 3D specimen [mm] (dim 3 only; a 2D section has thickness_m instead).
+        thickness_m: out-of-plane thickness b of a 2D section [m]; facet area = facet length x b
+            (paper: 1 m); unused in 3D, where a facet's area is its own.
+        rmax_mm: largest disc (sphere) radius [mm] (paper: 2.4 / 5 = 0.48 mm).
         rmin_ratio: Rmin / Rmax [-], in (0, 1] (paper: 2/3); radii are uniform in [Rmin, Rmax].
         sieve_fractions_mm: aggregate sieve fractions ((d_lo, d_hi), ...) [mm]; the sieve
             size of a polygon is its smallest width (caliper diameter).
         fraction_shares: share of each fraction in the aggregate area [-], summing to 1.
-        aggregate_area_fraction: aggregate polygon area / specimen area [-], in [0, 0.6].
+        aggregate_area_fraction: aggregate polygon area / specimen area [-], in [0, 0.6]; in 3D the
+            aggregate volume fraction (the same number by Delesse's principle: a random section of a
+            concrete shows its volume fraction as area fraction).
         min_gap_mm: smallest mortar gap between two aggregate polygons [mm].
         wall_gap_mm: smallest distance from a polygon to the specimen sides [mm].
         aspect_ratio_range: (lo, hi) of the aggregate aspect ratio, length / width [-], 1 <= lo <= hi <= 4.
@@ -79,6 +91,8 @@ class MesoParameters:
 
     width_mm: float = 100.0
     height_mm: float = 100.0
+    depth_mm: float = 100.0
+    dim: int = 2
     thickness_m: float = 1.0
     rmax_mm: float = 0.48
     rmin_ratio: float = 2.0 / 3.0
@@ -150,8 +164,15 @@ class MesoParameters:
                 raise MesoParameterError(name, v, what or f"allowed range {rng}")
             return fv
 
+        dim = self.dim
+        if isinstance(dim, bool) or dim not in DIMS:
+            raise MesoParameterError("dim", dim, f"must be one of {DIMS}")
         W = num("width_mm", 0, lo_open=True, what="must be a finite length > 0 mm")
         H = num("height_mm", 0, lo_open=True, what="must be a finite length > 0 mm")
+        sides = (W, H)
+        if dim == 3:
+            sides = (W, H, num("depth_mm", 0, lo_open=True, what="must be a finite length > 0 mm"))
+        box = " x ".join(f"{v:g}" for v in sides)
         num("thickness_m", 0, lo_open=True, what="must be a finite thickness > 0 m")
         rmax = num("rmax_mm", 0, lo_open=True, what="must be a finite radius > 0 mm")
         ratio = self.rmin_ratio
@@ -165,15 +186,19 @@ class MesoParameters:
             raise MesoParameterError(
                 "rmin_ratio", ratio,
                 f"Rmin = {ratio_f * rmax:g} mm > Rmax = {rmax:g} mm; Rmin / Rmax must be in (0, 1]")
-        if 2 * rmax > min(W, H):
+        particle = "disc" if dim == 2 else "sphere"
+        if 2 * rmax > min(sides):
             raise MesoParameterError("rmax_mm", self.rmax_mm,
-                                     f"a disc of diameter {2 * rmax:g} mm does not fit the "
-                                     f"{W:g} x {H:g} mm specimen; allowed range (0, {min(W, H) / 2:g}]")
-        n_bound = W * H / (math.pi * (ratio_f * rmax) ** 2)
-        if n_bound > MAX_DISCS:
+                                     f"a {particle} of diameter {2 * rmax:g} mm does not fit the "
+                                     f"{box} mm specimen; allowed range (0, {min(sides) / 2:g}]")
+        if dim == 2:
+            n_bound, n_max = W * H / (math.pi * (ratio_f * rmax) ** 2), MAX_DISCS
+        else:
+            n_bound, n_max = math.prod(sides) / (4.0 / 3.0 * math.pi * (ratio_f * rmax) ** 3), MAX_SPHERES
+        if n_bound > n_max:
             raise MesoParameterError("rmax_mm", self.rmax_mm,
-                                     f"up to {n_bound:.3g} discs for a {W:g} x {H:g} mm specimen; "
-                                     f"at most {MAX_DISCS} allowed (raise rmax_mm or shrink the specimen)")
+                                     f"up to {n_bound:.3g} {particle}s for a {box} mm specimen; "
+                                     f"at most {n_max} allowed (raise rmax_mm or shrink the specimen)")
         phi = num("aggregate_area_fraction", 0, MAX_AGGREGATE_AREA_FRACTION)
         gap = num("min_gap_mm", 0, what="must be a finite length >= 0 mm")
         wgap = num("wall_gap_mm", 0, what="must be a finite length >= 0 mm")
@@ -221,16 +246,16 @@ class MesoParameters:
             raise MesoParameterError("fraction_shares", sh,
                                      f"shares sum to {sum(sh_list):.6g}; they must sum to 1 (+-1e-6)")
         if phi > 0:
-            room = min(W, H) - 2 * wgap
+            room = min(sides) - 2 * wgap
             for k, (f, s) in enumerate(zip(fr_list, sh_list)):
                 if s > 0 and f[1] > room:
                     raise MesoParameterError(
                         "sieve_fractions_mm", fr,
-                        f"fraction {k} = {f[0]:g}-{f[1]:g} mm does not fit the {W:g} x {H:g} mm specimen "
+                        f"fraction {k} = {f[0]:g}-{f[1]:g} mm does not fit the {box} mm specimen "
                         f"with wall_gap_mm = {wgap:g}: d_hi must be <= {room:g} mm (or give it share 0, "
                         f"or set aggregate_area_fraction = 0)")
-            if gap > min(W, H):
-                raise MesoParameterError("min_gap_mm", self.min_gap_mm, f"allowed range [0, {min(W, H):g}]")
+            if gap > min(sides):
+                raise MesoParameterError("min_gap_mm", self.min_gap_mm, f"allowed range [0, {min(sides):g}]")
         return self
 
 

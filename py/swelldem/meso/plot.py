@@ -12,8 +12,12 @@ def plot_mesostructure(assembly, path, color_by="aggregate", show_itz=True, show
     Mortar discs are light grey; aggregate discs are coloured per aggregate
     (color_by="aggregate") or uniformly (color_by="uniform"); aggregate polygons are
     outlined in black; ITZ contacts are drawn in red between the disc centres.
-    Axes are in mm.
+    Axes are in mm. A 3D assembly is drawn as three orthogonal sections and a 3D view
+    (:func:`swelldem.meso.plot3d.plot_mesostructure_3d`).
     """
+    if assembly.dim == 3:
+        from .plot3d import plot_mesostructure_3d
+        return plot_mesostructure_3d(assembly, path, dpi=min(dpi, 130), title=title)
     import matplotlib
     if matplotlib.get_backend().lower() != "agg":
         try:
