@@ -38,6 +38,7 @@ def run(cmd, cwd, timeout=300):
     ("bench_mesostructure.py", ("--repeat", "1", "--size-mm", "12", "12", "--json", "{tmp}/m.json"), "per 100 x 100 mm specimen"),
     ("bench_laguerre3d.py", ("--sizes", "300", "--repeat", "1", "--json", "{tmp}/l3.json"), "| 256 | 5.43 |"),
     ("bench_packing3d.py", ("--sizes-mm", "4", "--json", "{tmp}/p3.json"), "| 4 | "),
+    ("bench_meso3d.py", ("--sizes-mm", "4", "--json", "{tmp}/m3.json"), "| 4 | "),
 ])
 def test_bench_driver_reaches_its_table(tmp_path, name, args, first_line):
     out = run([PY, os.path.join(BENCH, name)] + [a.format(tmp=tmp_path) for a in args], tmp_path)

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
-"""swelldem.meso: 2D concrete mesostructures discretised by discs.
+"""swelldem.meso: concrete mesostructures discretised by discs (2D sections) or spheres (3D boxes).
 
 Typical use::
 
@@ -9,8 +9,10 @@ Typical use::
     a.contacts, a.kind, a.facet_area_m2                     # contacts (MORTAR/ITZ/AGG)
     a.save("assembly.npz"); b = meso.load("assembly.npz")
     meso.plot_mesostructure(a, "mesostructure.png")
+    b = meso.generate(seed=1, dim=3, width_mm=20, height_mm=20, depth_mm=20)  # spheres, polyhedra
+    b.z, b.cell_volume_m3, b.facet_normal, b.facet_polygons, b.polyhedra   # the 3D attributes
 
-The heavy geometry (disc packing, Laguerre facets with CGAL) is in the compiled
+The heavy geometry (disc and sphere packings, Laguerre facets with CGAL) is in the compiled
 library ``libswelldem_geom.so`` of the build folder (see :mod:`swelldem.paths`). The package is
 pure geometry (numpy and that library): it imports no YADE code, and runs in plain Python. Its
 YADE scene is made by :func:`swelldem.dem.to_yade`.

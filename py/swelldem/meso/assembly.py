@@ -227,7 +227,8 @@ class Assembly:
                   "aggregate_volume_fraction_cells", "aggregate_volume_by_fraction",
                   "aggregates_by_fraction", "empty_aggregates", "max_overlap_m", "max_outside_m",
                   "cell_area_sum_rel_error", "cell_volume_sum_rel_error", "facet_asymmetry_max_m",
-                  "contact_gap_tolerance_m", "laguerre_pairs", "laguerre_pairs_not_in_contact", "timings_s",
+                  "contact_gap_tolerance_m", "laguerre_pairs", "laguerre_pairs_not_in_contact",
+                  "spheres_without_contact", "timings_s",
                   "wall_s", "packing_stats"):
             if k in self.stats:
                 s[k] = self.stats[k]

@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 """Generation of a concrete mesostructure (aggregates + disc packing + Laguerre contacts).
 
-Phases (timed in ``Assembly.stats["timings_s"]``):
+``generate`` makes a 2D section (below) or, with ``dim=3``, a 3D box (:mod:`swelldem.meso.generator3d`).
+2D phases (timed in ``Assembly.stats["timings_s"]``):
 
 1. aggregates: convex polygons drawn from the grading and placed largest first
    (:mod:`swelldem.meso.aggregates`, Python);
@@ -16,6 +17,7 @@ import numpy as np
 from . import _geom
 from .aggregates import draw_aggregates, place_aggregates
 from .assembly import AGGREGATE_MATERIAL, Assembly
+from .generator3d import generate_3d
 from .params import MesoParameterError, MesoParameters
 
 MM = 1e-3  # metres per millimetre
@@ -120,7 +122,7 @@ def generate(params=None, seed=0, order="packing", **overrides):
         order: numbering of discs and contacts, one of ORDERS; both give the same discs and contacts
             (same values, only renumbered); "packing" (default) as placed, "hilbert" in spatial order.
         **overrides: fields of MesoParameters to change, e.g. ``width_mm=30, height_mm=30``
-            (lengths in mm, see MesoParameters).
+            (lengths in mm, see MesoParameters); ``dim=3, depth_mm=30`` for a 3D box.
 
     Raises:
         MesoParameterError: a parameter is out of range (before any work starts).
@@ -135,6 +137,8 @@ def generate(params=None, seed=0, order="packing", **overrides):
     seed = _check_seed(seed)
     if order not in ORDERS:
         raise MesoParameterError("order", order, f"must be one of {ORDERS}")
+    if p.dim == 3:
+        return generate_3d(p, seed, order, OVERLAP_TOLERANCE_RATIO)
     t_start = time.perf_counter()
     timings = {}
 
