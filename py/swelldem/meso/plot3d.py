@@ -154,7 +154,7 @@ def plot_mesostructure_3d(assembly, path, levels=None, dpi=130, title=None):
         frac = st.get("aggregate_volume_fraction")
         title = (f"3D mesostructure {' x '.join(f'{v * 1e3:g}' for v in size)} mm, seed {a.seed}: "
                  f"{a.n_particles} spheres ({int((a.aggregate_id >= 0).sum())} aggregate), "
-                 f"packing density {a.packing_density:.3f}, aggregate volume fraction "
+                 f"packing density {a.packing_density:.3f},\naggregate volume fraction "
                  f"{'-' if frac is None else f'{frac:.3f}'}, {a.n_contacts} contacts "
                  f"(MORTAR {int((a.kind == MORTAR).sum())}, ITZ {int((a.kind == ITZ).sum())}, "
                  f"AGG {int((a.kind == AGG).sum())})")
@@ -194,7 +194,7 @@ def plot_facet_sizes(box, section, path, dpi=130):
     for a, label, colour in ((section, "2D section: facet length", "tab:blue"),
                              (box, "3D box: 2 sqrt(facet area / pi)", "tab:red")):
         v = facet_sizes_mm(a) / (a.r.mean() * 1e3)
-        ax.hist(v, bins=60, range=(0, 2.5), density=True, histtype="step", lw=1.6, color=colour,
+        ax.hist(v, bins=60, range=(0.8, 2.6), density=True, histtype="step", lw=1.6, color=colour,
                 label=f"{label} ({len(v)} contacts, mean {v.mean():.2f}, coordination {a.mean_coordination:.2f})")
     ax.set_xlabel("facet size / mean particle radius [-]")
     ax.set_ylabel("probability density [-]")
