@@ -2,7 +2,8 @@
 """Compares swelling-test runs in the form of the paper's Table 3.7: the 5 % / 95 % normal-force
 quantiles and broken contacts per kind at the last step, with the variation in percent against a
 reference run (e.g. elastic without damage), the paper's values beside ours where the paper has
-the same runs, and the runs on common figures.
+the same runs, and the runs on common figures, each run in its own colour, its legend and compare.md
+naming the settings in which the runs differ.
 
   /usr/bin/python3 scripts/compare_runs.py --reference out/isr-el-nodmg out/isr-ve-nodmg out/isr-ve-dmg --out out/compare-isr
 writes OUT/compare.md, OUT/compare.csv and the overlays OUT/compare_strain.png (swelling strain
@@ -47,8 +48,10 @@ def main(argv):
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)
-    lines = report.compare_md(rows, a.reference, ref)
-    runs = [(f"{os.path.basename(os.path.normpath(d))}: {report.run_label(r)}", r) for d, r in zip([a.reference] + a.runs, [ref] + others)]
+    folders = [os.path.basename(os.path.normpath(d)) for d in [a.reference] + a.runs]
+    lines = report.compare_md(rows, a.reference, ref, runs=list(zip(folders, [ref] + others)))
+    differ = report.differing_settings([ref] + others)
+    runs = [(f"{name}: {report.run_label(r, differ)}", r) for name, r in zip(folders, [ref] + others)]
     names = report.write_overlays(a.out, runs, "compare", report.LABEL.get(ref["scenario"], ref["scenario"]))
     lines += ["", "Figures: " + ", ".join(names) + "."]
     with open(os.path.join(a.out, "compare.md"), "w") as f:

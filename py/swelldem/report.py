@@ -479,16 +479,53 @@ def write_all(out, res, assembly, broken_contacts):
 # ---- several runs on one figure (paper Figures 3.3-3.14: elastic / viscoelastic, damage / none)
 
 #: Line colour by behaviour and style by damage in the overlays.
-BEHAVIOUR_COLORS = {"elastic": "tab:red", "viscoelastic": "tab:blue", "aging-elastic": "tab:orange"}
+#: Entries of a run's config that say where and how often it wrote, not what was run.
+_NOT_CONDITIONS = ("out", "vtk_every")
 
 
-def run_label(res):
-    return f"{res['behaviour']}, {'damage' if res['damage'] else 'no damage'}"
+def differing_settings(runs):
+    """The settings (config entries of results.json, but where the run wrote) whose values differ
+    between the runs (results dicts), in name order: what a comparison has to name so that a reader
+    knows what was varied (e.g. ['kind_params'] for a sweep of the ITZ strength)."""
+    configs = [r.get("config") or {} for r in runs]
+    keys = sorted(set().union(*configs) - set(_NOT_CONDITIONS)) if configs else []
+    text = lambda v: json.dumps(v, sort_keys=True, default=str)  # noqa: E731
+    return [k for k in keys if len({text(c.get(k)) for c in configs}) > 1]
+
+
+def setting_text(res, key):
+    """A setting's value as a comparison prints it: numbers with %g, lists spaced, dicts as
+    NAME=VALUE with nested names joined by dots (kind_params {"ITZ": {"tensileStrength": 3e6}} ->
+    ITZ.tensileStrength=3e+06, the form of --kind-param)."""
+    def flat(prefix, v):
+        if isinstance(v, dict):
+            return [p for k in sorted(v) for p in flat(f"{prefix}.{k}" if prefix else str(k), v[k])]
+        return [f"{prefix}={one(v)}"]
+
+    def one(v):
+        if isinstance(v, float):
+            return f"{v:g}"
+        if isinstance(v, (list, tuple)):
+            return " ".join(one(x) for x in v)
+        return str(v)
+
+    v = (res.get("config") or {}).get(key)
+    if isinstance(v, dict):
+        return " ".join(flat("", v)) or "defaults"  # {}: nothing set away from the scenario's values
+    return one(v)
+
+
+def run_label(res, settings=()):
+    """behaviour, damage, and the given settings (e.g. differing_settings of the runs compared)."""
+    base = f"{res['behaviour']}, {'damage' if res['damage'] else 'no damage'}"
+    extra = [f"{k} {setting_text(res, k)}" for k in settings if k not in ("behaviour", "damage")]
+    return base + ("; " + ", ".join(extra) if extra else "")
 
 
 def _style(res, k):
-    color = BEHAVIOUR_COLORS.get(res["behaviour"], f"C{k + 3}")
-    return {"color": color, "ls": "--" if res["damage"] else "-"}
+    """Each run its own colour (runs of one behaviour and damage setting, e.g. a sweep, must not
+    draw alike); dashed with damage."""
+    return {"color": f"C{k % 10}", "ls": "--" if res["damage"] else "-"}
 
 
 def plot_strain_overlay(path, runs, title):
@@ -619,9 +656,10 @@ def compare(reference, others, names=None):
     return table
 
 
-def compare_md(rows, reference_name, reference):
+def compare_md(rows, reference_name, reference, runs=None):
     """The Markdown lines of the Table 3.7 form of compare() rows; reference_name: how the
-    reference run is named under the table (its folder)."""
+    reference run is named under the table (its folder); runs: [(name, results dict)], reference
+    first, to name the settings in which they differ."""
     fmt = lambda v: "-" if v is None or v != v else f"{round(v)}"  # NaN (no reference value) and None print as "-"
     scenario = reference["scenario"]
     named = any(r.get("name") for r in rows)  # runs of the same behaviour and damage (a sweep) need their names
@@ -640,6 +678,12 @@ def compare_md(rows, reference_name, reference):
               "Variation: (value - reference) / reference; '-' where the reference is below 0.05 kN in magnitude (the paper's 0.0) "
               "or the paper has no such run. "
               "Paper: Tables 3.4, 3.6 and 3.7 (100 x 100 mm). " + size_note(reference)]
+    differ = differing_settings([r for _, r in runs]) if runs else []
+    if differ:
+        lines.append("Settings that differ between the runs: " + "; ".join(
+            f"{k}: " + ", ".join(f"{setting_text(r, k)} ({n})" for n, r in runs) for k in differ) + ".")
+    elif runs and len(runs) > 1:
+        lines.append("The runs have the same settings (seeds, solver and every option alike).")
     states = {r["run"] for r in rows}
     if states != {"finished"}:
         ref_state = rows[0]["run"] if rows else "finished"

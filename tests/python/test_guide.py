@@ -209,6 +209,8 @@ def test_a_sweep_with_yade_batch_and_its_comparison(work):
     run_ok(guide_command("compare_runs.py"), work)
     md = (sweep / "compare" / "compare.md").read_text()
     assert "forces (kN)" in md and "Reference: out/my_sweep/itz_2MPa" in md
+    # the reference sets no kind parameter: the scenario's 2 MPa
+    assert "Settings that differ between the runs: kind_params: defaults (itz_2MPa), ITZ.tensileStrength=3e+06 (itz_3MPa)." in md
     # one row per kind and run, named by its folder: the ITZ broken counts, read by the table's header
     lines = [line for line in md.splitlines() if line.startswith("| ")]
     header = [c.strip() for c in lines[0].strip("|").split("|")]

@@ -341,3 +341,23 @@ def test_output_folder_and_file_checks_make_nothing(tmp_path):
             check("out", value)
         assert str(e.value).startswith(FORM.format("out", repr(value))) and why in str(e.value), str(e.value)
     assert sorted(os.listdir(tmp_path)) == ["f"]
+
+
+def test_compare_runs_names_the_setting_a_sweep_varies(tmp_path):
+    """The guide's sweep (ITZ tensile strength 2 against 3 MPa): two runs of one behaviour and damage
+    setting. compare.md names the setting and each run's value, the legends carry it, and the two
+    runs draw in different colours."""
+    base = {"scenario": "isr", "behaviour": "viscoelastic", "damage": True, "seed": 1, "out": "x", "vtk_every": 0}
+    a = write(tmp_path / "itz2", results(config=dict(base, kind_params={"ITZ": {"tensileStrength": 2e6}}, out="itz2")))
+    b = write(tmp_path / "itz3", results(config=dict(base, kind_params={"ITZ": {"tensileStrength": 3e6}}, out="itz3", vtk_every=5)))
+    p = compare(tmp_path, a, b)
+    assert p.returncode == 0, p.stderr
+    md = (tmp_path / "cmp" / "compare.md").read_text()
+    assert ("Settings that differ between the runs: kind_params: ITZ.tensileStrength=2e+06 (itz2), "
+            "ITZ.tensileStrength=3e+06 (itz3).") in md
+    ra, rb = json.loads((a / "results.json").read_text()), json.loads((b / "results.json").read_text())
+    assert report.differing_settings([ra, rb]) == ["kind_params"]  # where a run wrote is not a condition
+    assert report.run_label(rb, ["kind_params"]) == "viscoelastic, damage; kind_params ITZ.tensileStrength=3e+06"
+    assert report._style(ra, 0)["color"] != report._style(rb, 1)["color"]
+    same = compare(tmp_path, a, a)
+    assert "The runs have the same settings" in (tmp_path / "cmp" / "compare.md").read_text() and same.returncode == 0
