@@ -1,8 +1,8 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
-"""Shared helpers of the solver and law benchmarks (scripts/bench/bench_adr_vs_yade.py,
-scripts/bench/bench_law_cost.py): a bonded 2D assembly from swelldem.meso turned into a YADE scene
-with either swelldem's law or YADE's Law2_ScGeom_FrictPhys_CundallStrack, timing statistics and
-JSON output. The YADE parts import yade lazily, so the module also loads in plain python3."""
+"""Shared helpers of the benchmarks: a bonded 2D assembly from swelldem.meso turned into a YADE scene
+with either swelldem's law or YADE's Law2_ScGeom_FrictPhys_CundallStrack (bench_adr_vs_yade.py,
+bench_law_cost.py), timing statistics, child processes (YADE workers, or plain Python for the
+geometry benches) and JSON output. The YADE parts import yade lazily, so the module also loads in plain python3."""
 import json
 import math
 import os
@@ -121,6 +121,17 @@ def write_json(path, data):
     with open(path, "w") as f:
         json.dump(data, f, indent=1)
     print(f"wrote {path}")
+
+
+def run_plain_child(script, args):
+    """Runs `script args...` with this Python (no YADE), one process a measurement so that its peak
+    memory is its own; returns the JSON of the last line it prints. A child that fails raises
+    RuntimeError with the last line of its stderr (e.g. the generator's refusal)."""
+    p = subprocess.run([sys.executable, script] + [str(x) for x in args], capture_output=True, text=True)
+    if p.returncode != 0:
+        err = p.stderr.strip().splitlines()
+        raise RuntimeError(err[-1] if err else f"{script} exited with {p.returncode}")
+    return json.loads(p.stdout.strip().splitlines()[-1])
 
 
 def run_worker(script, threads, args, timeout=3600):

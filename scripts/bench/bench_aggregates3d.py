@@ -6,30 +6,24 @@ draw and the placement take (swelldem.meso.aggregates3d; no packing, no facets).
     /usr/bin/python3 scripts/bench/bench_aggregates3d.py [--sizes-mm 20 25 30] [--seeds 0 29] [--json F]
 
 For every size, seeds first..last (the generator's seeds: the aggregates' stream of
-numpy.random.SeedSequence(seed), as swelldem.meso.generate draws it). Prints one row a size: seeds
+swelldem.meso.generator.seed_streams, as swelldem.meso.generate draws it). Prints one row a size: seeds
 placed, the aggregates and the volume fraction reached (mean over the placed seeds), mean draw and
 placement times. MIN_RELIABLE_SIZE_3D_MM in aggregates3d.py quotes this table.
 """
 import argparse
-import json
-import os
-import sys
 import time
 
-try:
-    import swelldem.meso  # noqa: F401
-except ImportError:
-    _repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    sys.path.insert(0, os.path.join(_repo, "py"))
+import _common as C  # noqa: E402  (puts py/ on the path)
 import numpy as np  # noqa: E402
 
 from swelldem import meso, options  # noqa: E402
 from swelldem.meso import aggregates3d  # noqa: E402
+from swelldem.meso.generator import seed_streams  # noqa: E402
 
 
 def one(size, seed):
     p = meso.MesoParameters(dim=3, width_mm=size, height_mm=size, depth_mm=size).validate()
-    rng = np.random.default_rng(np.random.SeedSequence(seed).spawn(2)[0])
+    rng = seed_streams(seed)[0]
     t = time.perf_counter()
     aggs = aggregates3d.draw_polyhedra(p, rng)
     t_draw = time.perf_counter() - t
@@ -71,9 +65,7 @@ def main():
               f"{np.mean([r['draw_s'] for r in res]):.1f} | {np.mean([r['place_s'] for r in res]):.1f} | "
               f"{' '.join(map(str, failed)) or '-'} |", flush=True)
     if a.json:
-        os.makedirs(os.path.dirname(os.path.abspath(a.json)), exist_ok=True)
-        with open(a.json, "w") as f:
-            json.dump(rows, f, indent=1)
+        C.write_json(a.json, rows)
 
 
 if __name__ == "__main__":

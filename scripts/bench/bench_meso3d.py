@@ -14,15 +14,9 @@ import argparse
 import json
 import os
 import resource
-import subprocess
-import sys
 import time
 
-try:
-    import swelldem.meso  # noqa: F401
-except ImportError:
-    _repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    sys.path.insert(0, os.path.join(_repo, "py"))
+import _common as C  # noqa: E402  (puts py/ on the path)
 from swelldem import options  # noqa: E402
 
 
@@ -67,13 +61,11 @@ def main():
     print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     rows = []
     for size in a.sizes_mm:
-        out = subprocess.run([sys.executable, os.path.abspath(__file__), "--one", str(size), "--seed", str(a.seed)],
-                             capture_output=True, text=True)
-        if out.returncode != 0:
-            print(f"| {size:g} | failed: {out.stderr.strip().splitlines()[-1] if out.stderr.strip() else out.returncode} |",
-                  flush=True)
+        try:
+            st = C.run_plain_child(os.path.abspath(__file__), ["--one", size, "--seed", a.seed])
+        except RuntimeError as e:
+            print(f"| {size:g} | failed: {e} |", flush=True)
             continue
-        st = json.loads(out.stdout.strip().splitlines()[-1])
         rows.append(st)
         t = st["timings_s"]
         print(f"| {size:g} | {st['spheres']} | {st['aggregates']} | {st['aggregate_volume_fraction']:.4f} | "
@@ -81,9 +73,7 @@ def main():
               f"{t['packing']:.1f} | {t['laguerre']:.1f} | {t['labelling']:.1f} | {st['wall_s']:.1f} | "
               f"{st['peak_mb']:.0f} | {st['note']} |", flush=True)
     if a.json:
-        os.makedirs(os.path.dirname(os.path.abspath(a.json)), exist_ok=True)
-        with open(a.json, "w") as f:
-            json.dump(rows, f, indent=1)
+        C.write_json(a.json, rows)
 
 
 if __name__ == "__main__":

@@ -12,15 +12,9 @@ import argparse
 import json
 import os
 import resource
-import subprocess
-import sys
 import time
 
-try:
-    import swelldem.meso  # noqa: F401
-except ImportError:
-    _repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    sys.path.insert(0, os.path.join(_repo, "py"))
+import _common as C  # noqa: E402  (puts py/ on the path)
 from swelldem import options  # noqa: E402
 
 RMAX = 0.48
@@ -58,17 +52,13 @@ def main():
     print("|---|---|---|---|---|---|---|---|---|")
     rows = []
     for size in a.sizes_mm:
-        out = subprocess.run([sys.executable, os.path.abspath(__file__), "--one", str(size), "--seed", str(a.seed)],
-                             capture_output=True, text=True, check=True).stdout
-        st = json.loads(out.strip().splitlines()[-1])
+        st = C.run_plain_child(os.path.abspath(__file__), ["--one", size, "--seed", a.seed])
         rows.append(st)
         print(f"| {size:g} | {st['n']} | {st['density']:.4f} | {st['target_density']:.4f} | {st['removed']} | "
               f"{st['sweeps']} | {st['near_contacts_per_sphere']:.2f} | {st['wall_s']:.2f} | {st['peak_mb']:.0f} |",
               flush=True)
     if a.json:
-        os.makedirs(os.path.dirname(os.path.abspath(a.json)), exist_ok=True)
-        with open(a.json, "w") as f:
-            json.dump(rows, f, indent=1)
+        C.write_json(a.json, rows)
 
 
 if __name__ == "__main__":

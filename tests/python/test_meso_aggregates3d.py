@@ -10,6 +10,7 @@ from scipy.spatial import ConvexHull
 
 from swelldem import meso
 from swelldem.meso import aggregates3d as A
+from swelldem.meso.generator import seed_streams
 
 TETRA = np.array([[1, 1, 1], [1, -1, -1], [-1, 1, -1], [-1, -1, 1]], dtype=float)
 CUBE = np.array([[i, j, k] for i in (0, 1) for j in (0, 1) for k in (0, 1)], dtype=float)
@@ -119,7 +120,7 @@ def test_points_carry_the_2d_angular_spacing():
 def test_the_grading_reaches_its_volume_with_each_fraction_its_share():
     p = params(width_mm=30.0, height_mm=30.0, depth_mm=30.0, sieve_fractions_mm=((2.4, 4.75), (4.75, 10.0)),
                fraction_shares=(0.4, 0.6), aggregate_area_fraction=0.35)
-    aggs = A.draw_polyhedra(p, np.random.default_rng(np.random.SeedSequence(1).spawn(2)[0]))
+    aggs = A.draw_polyhedra(p, seed_streams(1)[0])
     vol = np.array([a.volume for a in aggs])
     frac = np.array([a.fraction for a in aggs])
     total = 0.35 * 30 ** 3
@@ -133,7 +134,7 @@ def test_the_grading_reaches_its_volume_with_each_fraction_its_share():
 @pytest.fixture(scope="module")
 def placed():
     p = params()
-    rng = np.random.default_rng(np.random.SeedSequence(2).spawn(2)[0])
+    rng = seed_streams(2)[0]
     return p, A.place_polyhedra(p, A.draw_polyhedra(p, rng), rng, seed=2)
 
 
@@ -158,7 +159,7 @@ def test_placed_polyhedra_keep_the_gaps(placed):
 
 def test_the_same_seed_places_the_same_polyhedra(placed):
     p, aggs = placed
-    rng = np.random.default_rng(np.random.SeedSequence(2).spawn(2)[0])
+    rng = seed_streams(2)[0]
     again = A.place_polyhedra(p, A.draw_polyhedra(p, rng), rng, seed=2)
     assert len(again) == len(aggs) and all(np.array_equal(a.vertices, b.vertices) for a, b in zip(aggs, again))
 

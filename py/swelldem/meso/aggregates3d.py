@@ -32,6 +32,7 @@ The 2D generator's shape controls (swelldem.meso.aggregates), one dimension up:
   nearest features are a vertex and an edge or two vertices within a gap's distance of touching.
 """
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -52,17 +53,21 @@ class Polyhedron:
     fraction: int
     aspect_ratio: float
 
+    # the vertices do not change once a polyhedron is made: its hull is computed once, for the grading,
+    # the placement, the statistics and the labels alike
+    @cached_property
+    def _hull(self):
+        return _hull(self.vertices)
+
     @property
     def volume(self):
         """[mm^3]"""
-        from scipy.spatial import ConvexHull
-        return float(ConvexHull(self.vertices).volume)
+        return float(self._hull.volume)
 
     @property
     def equations(self):
         """Hull half-spaces (k, 4): n . x + c <= 0 inside, n unit outward."""
-        from scipy.spatial import ConvexHull
-        return ConvexHull(self.vertices).equations
+        return self._hull.equations
 
 
 def _hull(points):
@@ -223,11 +228,11 @@ def draw_polyhedra(p, rng):
             ar = rng.uniform(ar_lo, ar_hi)
             nv = rng.integers(v_lo, v_hi + 1)
             v, ar_real = random_polyhedron(rng, d, ar, nv, p.angularity)
-            vol = float(_hull(v).volume)
-            if acc + vol > target and (acc + vol - target) > (target - acc):
+            grain = Polyhedron(v, float(d), k, ar_real)
+            if acc + grain.volume > target and (acc + grain.volume - target) > (target - acc):
                 break  # the total is closer to the target without this one
-            out.append(Polyhedron(v, float(d), k, ar_real))
-            acc += vol
+            out.append(grain)
+            acc += grain.volume
         carry = target - acc
     return out
 
@@ -299,7 +304,7 @@ def place_polyhedra(p, aggs, rng, seed=None):
     seed: the generator's seed, named in the error when a polyhedron finds no place."""
     size = np.array([p.width_mm, p.height_mm, p.depth_mm], dtype=float)
     gap, wgap = float(p.min_gap_mm), float(p.wall_gap_mm)
-    vols = [float(_hull(a.vertices).volume) for a in aggs]
+    vols = [a.volume for a in aggs]
     order = sorted(range(len(aggs)), key=lambda k: -vols[k])
     placed, shapes, pos = [], [], np.zeros((len(aggs), 3))
     rho, inner = np.zeros(len(aggs)), np.zeros(len(aggs))

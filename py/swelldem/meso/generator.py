@@ -10,6 +10,7 @@
 3. laguerre: power diagram of the discs with CGAL, cells clipped to the specimen (C++);
 4. labelling: discs -> mortar / aggregate, facets -> contacts and their kind, checks.
 """
+import functools
 import time
 
 import numpy as np
@@ -17,7 +18,6 @@ import numpy as np
 from . import _geom
 from .aggregates import draw_aggregates, place_aggregates
 from .assembly import AGGREGATE_MATERIAL, Assembly
-from .generator3d import generate_3d
 from .params import MesoParameterError, MesoParameters
 
 MM = 1e-3  # metres per millimetre
@@ -31,6 +31,13 @@ def _check_seed(seed):
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or not (0 <= int(seed) < 2 ** 63):
         raise MesoParameterError("seed", seed, "must be an integer in [0, 2**63)")
     return int(seed)
+
+
+def seed_streams(seed):
+    """The random streams of a seed, for both dimensions: numpy.random.SeedSequence(seed) spawns one
+    stream for the aggregates (a numpy Generator) and one 64-bit seed for the C++ packing."""
+    agg_seq, pack_seq = np.random.SeedSequence(seed).spawn(2)
+    return np.random.default_rng(agg_seq), int(pack_seq.generate_state(1, dtype=np.uint64)[0])
 
 
 def label_discs(x, y, r, polygons, rule="centre"):
@@ -138,14 +145,12 @@ def generate(params=None, seed=0, order="packing", **overrides):
     if order not in ORDERS:
         raise MesoParameterError("order", order, f"must be one of {ORDERS}")
     if p.dim == 3:
-        return generate_3d(p, seed, order, OVERLAP_TOLERANCE_RATIO)
+        from .generator3d import generate_3d  # a 2D section does not load the polyhedra's code
+        return generate_3d(p, seed, order)
     t_start = time.perf_counter()
     timings = {}
 
-    ss = np.random.SeedSequence(seed)
-    agg_seq, pack_seq = ss.spawn(2)
-    rng = np.random.default_rng(agg_seq)
-    pack_seed = int(pack_seq.generate_state(1, dtype=np.uint64)[0])
+    rng, pack_seed = seed_streams(seed)
 
     W, H = float(p.width_mm), float(p.height_mm)
     # 1. aggregates
@@ -176,7 +181,7 @@ def generate(params=None, seed=0, order="packing", **overrides):
     sel = gap <= tol_mm
 
     # checks reported in stats
-    max_overlap_mm = _max_overlap(x, y, r, p.rmax_mm)
+    max_overlap_mm = max_overlap(r, p.rmax_mm, x, y)
     outside = max(0.0, float(np.max(np.concatenate([r - x, x + r - W, r - y, y + r - H])))) if len(x) else 0.0
     cell_area_sum = float(lag["cell_area"].sum())
     cell_area_agg = float(lag["cell_area"][material == AGGREGATE_MATERIAL].sum())
@@ -238,17 +243,19 @@ def generate(params=None, seed=0, order="packing", **overrides):
         parameters=p.to_dict(), stats=stats)
 
 
-def _max_overlap(x, y, r, rmax):
-    """Largest overlap ri + rj - d over all pairs of discs (0 if none), via a k-d tree."""
-    if len(x) < 2:
+def max_overlap(r, rmax, *coords):
+    """Largest overlap ri + rj - d over all pairs of discs or spheres (0 if none), via a k-d tree;
+    coords: x, y (and z) of the centres."""
+    if len(r) < 2:
         return 0.0
     from scipy.spatial import cKDTree
-    tree = cKDTree(np.stack([x, y], axis=1))
-    pairs = tree.query_pairs(2 * rmax, output_type="ndarray")
+    pts = np.stack(coords, axis=1)
+    pairs = cKDTree(pts).query_pairs(2 * rmax, output_type="ndarray")
     if len(pairs) == 0:
         return 0.0
     i, j = pairs[:, 0], pairs[:, 1]
-    ov = r[i] + r[j] - np.hypot(x[i] - x[j], y[i] - y[j])
+    # hypot column by column: the 2D figure stays the one np.hypot(dx, dy) gave
+    ov = r[i] + r[j] - functools.reduce(np.hypot, (pts[i] - pts[j]).T)
     return max(0.0, float(ov.max()))
 
 

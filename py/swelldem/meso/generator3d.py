@@ -22,22 +22,20 @@ import numpy as np
 from . import _geom
 from .aggregates3d import draw_polyhedra, label_spheres, place_polyhedra
 from .assembly import AGGREGATE_MATERIAL, Assembly
+from .generator import OVERLAP_TOLERANCE_RATIO, max_overlap, seed_streams
 from .params import MesoParameterError
 
 MM = 1e-3  # metres per millimetre
 
 
-def generate_3d(p, seed, order="packing", overlap_tolerance_ratio=1e-9):
+def generate_3d(p, seed, order="packing"):
     """The 3D case of :func:`swelldem.meso.generate` (p validated, dim 3, seed checked)."""
     if order != "packing":
         raise MesoParameterError("order", order, "must be 'packing' in 3D: the sphere packing is numbered "
                                  "along a Morton curve already")
     t_start = time.perf_counter()
     timings = {}
-    ss = np.random.SeedSequence(seed)
-    agg_seq, pack_seq = ss.spawn(2)
-    rng = np.random.default_rng(agg_seq)
-    pack_seed = int(pack_seq.generate_state(1, dtype=np.uint64)[0])
+    rng, pack_seed = seed_streams(seed)
     W, H, D = float(p.width_mm), float(p.height_mm), float(p.depth_mm)
     box_volume = W * H * D
 
@@ -59,14 +57,14 @@ def generate_3d(p, seed, order="packing", overlap_tolerance_ratio=1e-9):
     fi, fj = lag["i"], lag["j"]
     dist = np.sqrt((x[fj] - x[fi]) ** 2 + (y[fj] - y[fi]) ** 2 + (z[fj] - z[fi]) ** 2)
     gap = dist - r[fi] - r[fj]
-    tol_mm = (p.contact_gap_ratio + overlap_tolerance_ratio) * p.rmax_mm
+    tol_mm = (p.contact_gap_ratio + OVERLAP_TOLERANCE_RATIO) * p.rmax_mm
     sel = gap <= tol_mm
     ci, cj = fi[sel], fj[sel]
     kind = _geom.pair_kinds(agg_id[ci], agg_id[cj])
     off, verts = lag["polygon_offset"], lag["polygon_vertices"]
     facet_polygons = [verts[off[k]:off[k + 1]] * MM for k in np.flatnonzero(sel)]
 
-    max_overlap_mm = _max_overlap(x, y, z, r, p.rmax_mm)
+    max_overlap_mm = max_overlap(r, p.rmax_mm, x, y, z)
     outside = max(0.0, float(np.max(np.concatenate([r - x, x + r - W, r - y, y + r - H, r - z, z + r - D])))) \
         if len(x) else 0.0
     cell_volume = lag["cell_volume"]
@@ -119,17 +117,3 @@ def generate_3d(p, seed, order="packing", overlap_tolerance_ratio=1e-9):
         aggregate_aspect_ratio=np.array([a.aspect_ratio for a in aggs], dtype=np.float64),
         width_m=W * MM, height_m=H * MM, depth_m=D * MM, thickness_m=float(p.thickness_m), seed=seed,
         parameters=p.to_dict(), stats=stats)
-
-
-def _max_overlap(x, y, z, r, rmax):
-    """Largest overlap ri + rj - d over all pairs of spheres (0 if none), via a k-d tree."""
-    if len(x) < 2:
-        return 0.0
-    from scipy.spatial import cKDTree
-    pts = np.stack([x, y, z], axis=1)
-    pairs = cKDTree(pts).query_pairs(2 * rmax, output_type="ndarray")
-    if len(pairs) == 0:
-        return 0.0
-    i, j = pairs[:, 0], pairs[:, 1]
-    ov = r[i] + r[j] - np.linalg.norm(pts[i] - pts[j], axis=1)
-    return max(0.0, float(ov.max()))
