@@ -7,9 +7,10 @@
 // the bodies by du through their velocities (ScGeom integrates the shear from them). A linear
 // step converges in one solve plus the pass that checks it; damage and the broken contacts'
 // open / sticking / sliding states make it an active-set Newton iteration (core::ContactLaw::mode),
-// and where that active set does not settle within newtonLimit iterations (a contact at the kink
-// between open and closed, a disc rolling between sliding contacts) dynamic relaxation takes the
-// step down to relaxTolerance and Newton finishes it. The factor is reused
+// a move across broken contacts' open / closed kink being solved as those contacts' complementarity
+// problem (kinkPasses), and where that active set does not settle within newtonLimit iterations (a
+// disc rolling between sliding contacts, contacts changing state at every iteration) dynamic
+// relaxation takes the step down to relaxTolerance and Newton finishes it. The factor is reused
 // while the tangent is unchanged and its symbolic analysis while the contact graph is.
 #pragma once
 #include "DynamicRelaxation.hpp"
@@ -85,6 +86,11 @@ public:
 	X(Real, fallbackTolerance, 1e-4, swelldem_attr::Setting,                                                                                           \
 	  "Unbalanced-force ratio at which a step handed to dynamic relaxation (fallbackIterations) is in equilibrium: the ADR's default "          \
 	  "tolerance, so that such a step has the ADR's accuracy [-]")                                                                                   \
+	X(long, kinkPasses, 8, swelldem_attr::Setting,                                                                                                  \
+	  "In a round in which the line search has rejected a whole Newton move (kinkRound), a move that takes broken contacts across their "    \
+	  "open / closed kink is solved again as the complementarity problem (LCP) of those contacts' piecewise linear forces; contacts the new " \
+	  "move takes across theirs join it, at most this many times; 0: never [-]")                                                              \
+	X(long, kinkSolves, 0, swelldem_attr::Result, "Newton moves solved as the LCP of the broken contacts they take across their kink (kinkPasses) so far [-]") \
 	X(long, maxSlidingExact, 1000, swelldem_attr::Setting,                                                                                              \
 	  "Sliding contacts up to which their shear-normal coupling enters the Newton solve exactly (one extra solve each); above, it is left out [-]") \
 	X(long, stalledRounds, 0, swelldem_attr::Result, "Rounds (a step, or its part between breaks) settled at stallTolerance, not at tolerance [-]") \
@@ -119,6 +125,7 @@ public:
 	  "Low-rank columns whose K^-1 u is kept with the current factor, in the order they were solved [N/m; N with rotations]")                    \
 	X(std::vector<int>, factoredGraph, std::vector<int>(), swelldem_attr::Internal,                                                                    \
 	  "Body ids (2 per contact) of the contacts the tangent's sparsity pattern was made for [-]")                                                 \
+	X(bool, kinkRound, false, swelldem_attr::Internal, "The line search has rejected a whole Newton move in the current round: its moves cross kinks as their LCP (kinkPasses) [-]") \
 	X(bool, relaxing, false, swelldem_attr::Internal, "The step is in a dynamic relaxation phase [-]")                                                  \
 	X(bool, fallback, false, swelldem_attr::Internal, "The current step was handed to dynamic relaxation (fallbackIterations) [-]")                   \
 	X(long, fallbackRelaxStart, 0, swelldem_attr::Internal, "relaxationIterations when the current step was handed over [-]")                     \
@@ -161,6 +168,10 @@ private:
 	bool                                  needsFactor(bool freshFactor) const; // K no longer within refactorTolerance and lowRankChanges of the factor
 	void                                  factor();
 	Eigen::Matrix<Real, Eigen::Dynamic, 1> solveWithCoupling(const Eigen::Matrix<Real, Eigen::Dynamic, 1>& r); // K^-1 r, Woodbury for the coupling
+	Real kinkOpening(const Interaction* I, const Eigen::Matrix<Real, Eigen::Dynamic, 1>& x) const; // opening by a move x
+	void addNormalRow(const Interaction* I, Real scale, Eigen::Matrix<Real, Eigen::Dynamic, 1>& v) const; // v += scale b
+	bool kinkModel(const std::vector<size_t>& C, const Eigen::Matrix<Real, Eigen::Dynamic, 1>& r0, Eigen::Matrix<Real, Eigen::Dynamic, 1>& du);
+	long settleKinks(Eigen::Matrix<Real, Eigen::Dynamic, 1>& du, const Eigen::Matrix<Real, Eigen::Dynamic, 1>& r); // the move's kinks
 	long                                  holdMechanisms(const Eigen::Matrix<Real, Eigen::Dynamic, 1>& du); // discs newly held (mechanismMove)
 	void                                  relaxIteration(const Balance& b); // one dynamic relaxation iteration
 	void                                  syncShearMode(); // the law functor's shear mode: from the step's start, incremental in a fallback
