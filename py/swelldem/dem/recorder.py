@@ -10,7 +10,7 @@ import numpy as np
 from ..measure import affine_strain
 from ..paper import KIND_NAMES
 from ..plugin import require
-from ..report import write_results
+from ..report import write_curves, write_results
 from .vtk_series import VtkSeries
 
 
@@ -85,7 +85,7 @@ class StepRecorder:
     solver's iterations so far ('iterations', split into 'newton_iterations' and
     'relaxation_iterations'), 'unbalanced_history' (the solver's records of the unbalanced-force
     ratio every historyEvery iterations: 'iteration', cumulative [-], and 'ratio' [-]) and, once, 'tensile_capacity_kN' (tensile_capacity()); then
-    rewrites results.json and BREAKS_FILE (the step index into times_days at which each bonded
+    rewrites results.json, the curves (report.write_curves: curves.csv, plot_data.txt) and BREAKS_FILE (the step index into times_days at which each bonded
     contact broke, -1 while intact) in `out` (a run that stops later keeps what it had) and, every
     vtk_every steps (0: none), the step's VTK files into out/vtk/ (swelldem.dem.vtk_series; the
     step number in the file names is the index into times_days). Made before the run starts: it
@@ -158,6 +158,7 @@ class StepRecorder:
         if self.vtk_every and len(r["times_days"]) % self.vtk_every == 0:
             self.export_vtk()
         write_results(self.out, r)
+        write_curves(self.out, r)
         self.write_breaks()
 
     def mark_breaks(self, step):
