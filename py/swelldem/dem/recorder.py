@@ -100,7 +100,7 @@ class StepRecorder:
         self.weights = np.where(assembly.coordination() >= 2, assembly.r ** 2, 0.0)
         self.t0 = time.time()
         self.bonded = bonded_pairs()
-        self.vtk = VtkSeries(os.path.join(out, "vtk"), self.bonded)
+        self.vtk = VtkSeries(os.path.join(out, "vtk"), self.bonded, cell_area=assembly.cell_area_m2, thickness=assembly.thickness_m)
         self.pairs = np.array(sorted(self.bonded), dtype=np.int32).reshape(-1, 2)
         self.pair_index = {tuple(p): c for c, p in enumerate(self.pairs.tolist())}
         self.pair_kind = np.full(len(self.pairs), -1, dtype=np.int8)
@@ -204,10 +204,13 @@ def fallback_steps(solver):
     return out
 
 
-def export_vtk(out, step, time_days, bonded=None):
+def export_vtk(out, step, time_days, bonded=None, assembly=None):
     """One snapshot of O as a ParaView series of one step in out/vtk/ (see
     swelldem.dem.vtk_series; it replaces an earlier series there). step [-], time_days [day]:
-    the step's index and physical time; bonded: see contact_arrays. Returns the VtkSeries."""
-    series = VtkSeries(os.path.join(out, "vtk"), bonded)
+    the step's index and physical time; bonded: see contact_arrays; assembly: the scene's
+    mesostructure, whose cell areas and thickness give the discs' stress (None: vtk_series'
+    stand-in). Returns the VtkSeries."""
+    cells = {} if assembly is None else {"cell_area": assembly.cell_area_m2, "thickness": assembly.thickness_m}
+    series = VtkSeries(os.path.join(out, "vtk"), bonded, **cells)
     series.export(step, time_days)
     return series
