@@ -480,7 +480,7 @@ def write_all(out, res, assembly, broken_contacts):
 
 #: Line colour by behaviour and style by damage in the overlays.
 #: Entries of a run's config that say where and how often it wrote, not what was run.
-_NOT_CONDITIONS = ("out", "vtk_every")
+_NOT_CONDITIONS = ("out", "vtk_every", "save_state")
 
 
 def differing_settings(runs):
@@ -659,6 +659,17 @@ def curve_columns(res):
                 share = [100.0 * v / total if total else float("nan") for v in values]
                 cols.append((f"{kind} broken_pct [%]", f"broken_pct_{kind}", share))
     return [(h, p, [int(v) if isinstance(v, bool) else v for v in values]) for h, p, values in cols]
+
+
+def truncate_steps(res, k):
+    """Cuts every per-step series of `res` (STEP_SERIES, per_kind's) to its first k steps."""
+    for key in STEP_SERIES:
+        if isinstance(res.get(key), list):
+            del res[key][k:]
+    for series in (res.get("per_kind") or {}).values():
+        for values in series.values():
+            if isinstance(values, list):
+                del values[k:]
 
 
 def _replace(path, text):
