@@ -56,15 +56,16 @@ def reference(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def interrupted(tmp_path_factory):
-    """An ADR run stopped by SIGTERM after at least 4 of its 18 steps (the ADR's steps take about
-    0.2 s each at 12 mm, so the signal comes before the end)."""
+    """An ADR run stopped by SIGTERM after at least 11 of its 18 steps, once its ITZ has begun to
+    crack (from step 10, 100 d; the ADR's steps take 0.05 to 0.4 s at 12 mm, so the signal comes
+    before the end)."""
     out = tmp_path_factory.mktemp("interrupted") / "run"
     p = subprocess.Popen([LAUNCHER, "-j", "1", "-n", "-x", SCRIPT, *ARGS, "--solver", "adr", "--out", str(out)],
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=ENV)
     deadline = time.time() + 300
     while time.time() < deadline and p.poll() is None:
         try:
-            if len(results(out)["times_days"]) >= 4:
+            if len(results(out)["times_days"]) >= 11:
                 break
         except (OSError, ValueError):
             pass
@@ -153,7 +154,8 @@ def assert_same_run(out, ref):
     for name in ("curves.csv", "plot_data.txt", "table.csv"):
         assert (out / name).read_bytes() == (ref / name).read_bytes(), name
     a, b = np.load(out / "contact_breaks.npz"), np.load(ref / "contact_breaks.npz")
-    assert all((a[k] == b[k]).all() for k in b.files)
+    for k in b.files:
+        assert np.array_equal(a[k], b[k]), f"contact_breaks.npz {k}: {a[k][a[k] != b[k]][:8]} against {b[k][a[k] != b[k]][:8]}"
 
 
 def test_a_run_stopped_by_sigterm_and_resumed_equals_the_uninterrupted_one(reference, interrupted, tmp_path):
@@ -161,7 +163,8 @@ def test_a_run_stopped_by_sigterm_and_resumed_equals_the_uninterrupted_one(refer
     shutil.copytree(interrupted, out)
     stopped = results(out)
     k = len(stopped["times_days"])
-    assert stopped["status"] == "interrupted: SIGTERM" and 4 <= k < 18 and (out / "state.yade").exists()
+    assert stopped["status"] == "interrupted: SIGTERM" and 11 <= k < 18 and (out / "state.yade").exists()
+    assert stopped["per_kind"]["ITZ"]["broken"][-1] > 0  # the breaks before the stop are kept with their steps
     p = swelling_test("--resume", str(out))
     assert f"swelldem: resumed from {out / 'state.yade'}: " in p.stdout
     res = results(out)
@@ -170,24 +173,33 @@ def test_a_run_stopped_by_sigterm_and_resumed_equals_the_uninterrupted_one(refer
 
 
 KILLED = r"""
-import os, signal, sys
+import os, shutil, signal, sys
 from swelldem import scenario
 test = scenario.SwellingTest(scenario="isr", size_mm=(12.0, 12.0), seed=1, steps_per_decade=5, save_state=True, out=sys.argv[1])
-def kill():   # after the recorder has written step 6 and saved the state: killed as by SIGKILL, no word
-    if len(open(sys.argv[1] + "/curves.csv").read().splitlines()) == 7:
+def kill():   # after the recorder has written step 11 and saved the state: killed as by SIGKILL, no word
+    rows = len(open(sys.argv[1] + "/curves.csv").read().splitlines()) - 1
+    if rows == 10:   # the state a step behind, as left by a kill between results.json's write and the save
+        shutil.copy(sys.argv[1] + "/state.yade", sys.argv[1] + "/state-10.yade")
+    if rows == 11:
         os.kill(os.getpid(), signal.SIGKILL)
 scenario.run(test, after_step=kill)
 """
 
 
-def test_a_killed_implicit_run_resumed_equals_the_uninterrupted_one(reference, yade_run, tmp_path):
+@pytest.mark.parametrize("behind", [False, True])
+def test_a_killed_implicit_run_resumed_equals_the_uninterrupted_one(reference, yade_run, tmp_path, behind):
+    """Killed after step 11 (its state saved), or with the state of step 10 only (killed between
+    the step's results and its save): the results of the steps the state has not done are dropped
+    and done again."""
     out = tmp_path / "run"
     yade_run(KILLED, out, threads=1, check=False)
     assert yade_run.proc.returncode == -signal.SIGKILL
     killed = results(out)
-    assert killed["status"] == "running" and len(killed["times_days"]) == 6
+    assert killed["status"] == "running" and len(killed["times_days"]) == 11 and killed["per_kind"]["ITZ"]["broken"][-1] > 0
+    if behind:
+        os.replace(out / "state-10.yade", out / "state.yade")
     swelling_test("--resume", str(out))
-    assert results(out)["resumed"][0]["steps_done"] == 6
+    assert results(out)["resumed"][0]["steps_done"] == (10 if behind else 11)
     assert_same_run(out, reference["implicit"])
 
 
