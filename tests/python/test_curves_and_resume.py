@@ -165,6 +165,7 @@ def test_a_run_stopped_by_sigterm_and_resumed_equals_the_uninterrupted_one(refer
     k = len(stopped["times_days"])
     assert stopped["status"] == "interrupted: SIGTERM" and 11 <= k < 18 and (out / "state.yade").exists()
     assert stopped["per_kind"]["ITZ"]["broken"][-1] > 0  # the breaks before the stop are kept with their steps
+    assert [r[0] for r in read_curves(out)[1]] == stopped["times_days"]  # the stopped run keeps its curves
     p = swelling_test("--resume", str(out))
     assert f"swelldem: resumed from {out / 'state.yade'}: " in p.stdout
     res = results(out)
