@@ -89,7 +89,10 @@ def write_polydata(path, points, cell_type, offsets, connectivity, cell_data=(),
     pts.SetData(vtk_array(vtk, "Points", np.asarray(points, dtype=np.float64).reshape(-1, 3), point_type))
     poly.SetPoints(pts)
     cells = cell_array(vtk, offsets, connectivity)
-    poly.SetPolys(cells) if cell_type == "Polys" else poly.SetLines(cells)
+    if cell_type == "Polys":
+        poly.SetPolys(cells)
+    else:
+        poly.SetLines(cells)
     for target, arrays in ((poly.GetCellData(), cell_data), (poly.GetPointData(), point_data)):
         for name, kind, values in arrays:
             target.AddArray(_string_array(vtk, name, values) if kind is str else vtk_array(vtk, name, values, kind))
@@ -149,21 +152,22 @@ def disc_state(discs, cell_area=None, thickness=1.0, bonded=None):
         ids = np.array([b.id for b in discs], dtype=int)
         have = ids < len(cell_area)
         area[have] = np.asarray(cell_area, dtype=float)[ids[have]]
-    moment = np.zeros((n, 2, 2))
     total = np.zeros(n, dtype=int)
     intact = np.zeros(n, dtype=int)
     whole = set()  # unbroken pairs of discs
+    side, force, point = [], [], []  # per (contact, disc of it): the disc, the force on it, the contact point
     for i in O.interactions:
         if not i.isReal:
             continue
         f = i.phys.normalForce + i.phys.shearForce  # the law's force on id2; on id1 its opposite
         fx, fy = float(f[0]), float(f[1])
-        cp = i.geom.contactPoint
+        cp = (float(i.geom.contactPoint[0]), float(i.geom.contactPoint[1]))
         for body, sign in ((i.id1, -1.0), (i.id2, 1.0)):
             k = index.get(body)
             if k is not None:
-                lx, ly = float(cp[0]) - pos[k, 0], float(cp[1]) - pos[k, 1]
-                moment[k] += sign * np.array([[fx * lx, fx * ly], [fy * lx, fy * ly]])
+                side.append(k)
+                force.append((sign * fx, sign * fy))
+                point.append(cp)
         if i.id1 in index and i.id2 in index:
             if bonded is None:
                 for body in (i.id1, i.id2):
@@ -176,6 +180,10 @@ def disc_state(discs, cell_area=None, thickness=1.0, bonded=None):
             for body in (a, b):
                 total[index[body]] += 1
                 intact[index[body]] += (a, b) in whole
+    side = np.array(side, dtype=int)
+    force, branch = np.array(force).reshape(-1, 2), np.array(point).reshape(-1, 2) - pos[side]
+    moment = np.zeros((n, 2, 2))
+    np.add.at(moment, side, force[:, :, None] * branch[:, None, :])
     sym = 0.5 * (moment + moment.transpose(0, 2, 1)) / (area * thickness)[:, None, None]
     stress = np.zeros((n, 3, 3))
     stress[:, :2, :2] = sym
