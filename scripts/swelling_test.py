@@ -6,11 +6,15 @@
       [--steps-per-decade N] [--tolerance TOL] [--kind-param MORTAR.tensileStrength=5e6 ...] \
       [--solver-param fallbackIterations=3 ...] \
       [--temperature-c T | --temperature-csv FILE] [--boundary-x free|fixed|stress:S|spring:K] \
-      [--boundary-y ...] [--rebar-ratio R] --out DIR
+      [--boundary-y ...] [--rebar-ratio R] [--save-state] --out DIR
+  scripts/yade-swelldem -n -x scripts/swelling_test.py --resume DIR
 
 writes DIR/results.json, DIR/table.md, DIR/table.csv, DIR/*.png (swelling strain, unbalanced force,
 force quantiles, crack map) and DIR/vtk/ (ParaView: particles and contacts .vtp files of the last step,
-or of every k-th with --vtk-every k, and particles.pvd / contacts.pvd with the times in days).
+or of every k-th with --vtk-every k, and particles.pvd / contacts.pvd with the times in days),
+DIR/curves.csv and DIR/plot_data.txt (every per-step series; the second in yade.plot.saveDataTxt's form)
+and, with --save-state, DIR/state.yade after every step (--resume DIR continues a run stopped
+after some steps from it, with the run's own settings) and DIR/final.yade.gz at the end.
 The options are the fields of swelldem.scenario.SwellingTest; --kind-param sets any ContactKind
 attribute of one kind, --solver-param any setting of the solver (see `--help`).
 
@@ -28,12 +32,16 @@ from swelldem import options, scenario  # noqa: E402
 
 ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
 scenario.add_arguments(ap)
+scenario.add_resume_argument(ap)
 with options.refuse_bad("swelling_test.py"):  # exit status 2, as argparse's, before any work
+    args = ap.parse_args(sys.argv[1:])
     # under yade-batch (YADE_BATCH set) the job's table line overrides the command line's values
-    test = scenario.from_batch_table(scenario.from_arguments(ap.parse_args(sys.argv[1:])))
+    test = scenario.from_batch_table(scenario.from_arguments(args))
+    if args.resume:
+        test = scenario.resumed_test(args.resume, test, scenario.given_options(ap, sys.argv[1:]))
     prepared = scenario.prepare(test)
 # a run that stops (failed, interrupted) ends with its one-line status on stderr and exit status 1
-res = scenario.run_or_exit(test, "swelling_test.py", prepared)
+res = scenario.run_or_exit(test, "swelling_test.py", prepared, resume=bool(args.resume))
 print(f"swelling_test: {test.scenario} {test.behaviour} damage {'on' if test.damage else 'off'}, solver {test.solver}: "
       f"{res['n_particles']} particles, strain x {res['swelling_strain_x'][-1] * 1e6:.0f}e-6 y {res['swelling_strain_y'][-1] * 1e6:.0f}e-6, "
       f"iterations {res['iterations']}, wall {res['wall_s']:.1f} s")

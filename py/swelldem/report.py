@@ -480,7 +480,7 @@ def write_all(out, res, assembly, broken_contacts):
 
 #: Line colour by behaviour and style by damage in the overlays.
 #: Entries of a run's config that say where and how often it wrote, not what was run.
-_NOT_CONDITIONS = ("out", "vtk_every")
+_NOT_CONDITIONS = ("out", "vtk_every", "save_state")
 
 
 def differing_settings(runs):
@@ -606,6 +606,95 @@ def write_results(out, res):
     with open(os.path.join(out, "results.json.tmp"), "w") as f:
         json.dump(res, f, indent=1, default=float)
     os.replace(os.path.join(out, "results.json.tmp"), os.path.join(out, "results.json"))
+
+
+#: The per-step curves of a run, next to results.json: a CSV with units in its header, and the same
+#: columns in the text form of yade.plot.saveDataTxt.
+CURVES_FILE, PLOT_DATA_FILE = "curves.csv", "plot_data.txt"
+
+#: The per-step series of results.json's top level, in the curves' order: key -> (name, unit). Platen
+#: series join only for an axis with platens (they are 0 on a free side); the bars' when present.
+STEP_SERIES = {"times_days": ("t", "d"), "swelling_strain_x": ("swelling_strain_x", "-"),
+               "swelling_strain_y": ("swelling_strain_y", "-"), "swelling_strain_area": ("swelling_strain_area", "-"),
+               "platen_stress_x_Pa": ("platen_stress_x", "Pa"), "platen_disp_x_m": ("platen_disp_x", "m"),
+               "platen_stress_y_Pa": ("platen_stress_y", "Pa"), "platen_disp_y_m": ("platen_disp_y", "m"),
+               "rebar_stress_max_Pa": ("rebar_stress_max", "Pa"), "rebar_stress_mean_Pa": ("rebar_stress_mean", "Pa"),
+               "unbalanced_ratio": ("unbalanced_ratio", "-"), "iterations_per_step": ("iterations", "-"),
+               "step_at_round_off": ("step_at_round_off", "-")}
+#: Unit of a per-kind series by the suffix of its results.json key (none: a count or a ratio, '-').
+_SUFFIX_UNITS = (("_kN", "kN"), ("_Pa", "Pa"), ("_m", "m"))
+
+
+def _series_unit(key):
+    for suffix, unit in _SUFFIX_UNITS:
+        if key.endswith(suffix):
+            return key[:-len(suffix)], unit
+    return key, "-"
+
+
+def curve_columns(res):
+    """The run's per-step series as columns [(CSV header 'name [unit]', plot_data name, values)], in
+    the order of STEP_SERIES, then per kind of results.json's per_kind each of its series with, after
+    'broken', the broken share of the kind's bonded contacts [%]. The plot_data name is the series'
+    results.json key, per kind in the flat form '<series>_<KIND>' (broken share: broken_pct_<KIND>);
+    booleans become 0/1."""
+    n = len(res.get("times_days") or [])
+    cfg = res.get("config") or {}
+    cols = []
+    for key, (name, unit) in STEP_SERIES.items():
+        values = res.get(key)
+        if not isinstance(values, list) or len(values) != n:
+            continue
+        if key.startswith("platen_") and cfg.get(f"boundary_{key.split('_')[2]}", "free") == "free":
+            continue
+        cols.append((f"{name} [{unit}]", key, values))
+    for kind, series in (res.get("per_kind") or {}).items():
+        for key, values in series.items():
+            if not isinstance(values, list) or len(values) != n:
+                continue
+            name, unit = _series_unit(key)
+            cols.append((f"{kind} {name} [{unit}]", f"{key}_{kind}", values))
+            total = (res.get("n_contacts_by_kind") or {}).get(kind)
+            if key == "broken" and total is not None:
+                share = [100.0 * v / total if total else float("nan") for v in values]
+                cols.append((f"{kind} broken_pct [%]", f"broken_pct_{kind}", share))
+    return [(h, p, [int(v) if isinstance(v, bool) else v for v in values]) for h, p, values in cols]
+
+
+def truncate_steps(res, k):
+    """Cuts every per-step series of `res` (STEP_SERIES, per_kind's) to its first k steps."""
+    for key in STEP_SERIES:
+        if isinstance(res.get(key), list):
+            del res[key][k:]
+    for series in (res.get("per_kind") or {}).values():
+        for values in series.values():
+            if isinstance(values, list):
+                del values[k:]
+
+
+def _replace(path, text):
+    with open(path + ".tmp", "w", newline="") as f:
+        f.write(text)
+    os.replace(path + ".tmp", path)
+
+
+def write_curves(out, res):
+    """out/curves.csv and out/plot_data.txt, one row per converged step (curve_columns), each
+    written to a temporary file, then renamed. The CSV's floats are repr's, which read back to the
+    same doubles as results.json's. plot_data.txt is what yade.plot.saveDataTxt(file, vars=names)
+    writes from yade.plot.data holding these columns: '# ' and the names joined by two tabs, then a
+    row per step of str() values joined by a tab; numpy.genfromtxt(file, names=True) reads it, and
+    yade.plot.data = {name: list(column)} gives it back to yade.plot."""
+    cols = curve_columns(res)
+    n = len(cols[0][2]) if cols else 0
+    import io
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow([h for h, _, _ in cols])
+    w.writerows([[repr(c[2][i]) if isinstance(c[2][i], float) else c[2][i] for c in cols] for i in range(n)])
+    _replace(os.path.join(out, CURVES_FILE), buf.getvalue())
+    lines = ["# " + "\t\t".join(p for _, p, _ in cols)] + ["\t".join(str(c[2][i]) for c in cols) for i in range(n)]
+    _replace(os.path.join(out, PLOT_DATA_FILE), "\n".join(lines) + "\n")
 
 
 #: A variation is shown only against a reference force of at least this [kN]: the paper prints "-"

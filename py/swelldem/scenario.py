@@ -108,6 +108,8 @@ class SwellingTest:
                                        "plugin; applied last (over --steps-per-decade, --tolerance, --t-start, --t-end)",
                                  flag="--solver-param", sets="solver.<setting>", factory=dict)
     vtk_every: int = _field(0, "ParaView files (DIR/vtk/) every k physical steps, and always of the last (0: only the last)")
+    save_state: bool = _field(False, "save the scene (O.save) after every physical step to DIR/state.yade (binary), from which "
+                                     "--resume DIR goes on, and at the end to DIR/final.yade.gz")
     out: str = _field("out/swelling", "output folder")
 
     def validate(self):
@@ -145,6 +147,8 @@ class SwellingTest:
             options.number("aggregate_area_fraction", self.aggregate_area_fraction, lo=0, hi=1, lo_incl=True,
                            allowed="< 0 (the generator's default) or 0 <= aggregate_area_fraction < 1")
         options.integer("vtk_every", self.vtk_every, lo=0)
+        if not isinstance(self.save_state, bool):
+            _bad("save_state", self.save_state, "True, False")
         from .dem.platens import Boundary  # plain Python: the parse needs no YADE
         for axis in ("x", "y"):
             Boundary.parse(f"boundary_{axis}", getattr(self, f"boundary_{axis}"))
@@ -325,6 +329,67 @@ def from_arguments(ns):
     kw["kind_params"] = params
     kw["solver_params"] = dict(parse_solver_param(text) for text in kw["solver_params"])
     return SwellingTest(**kw)
+
+
+def add_resume_argument(parser):
+    """Adds --resume DIR to a swelling test's parser (resumed_test() reads it)."""
+    parser.add_argument("--resume", metavar="DIR", default="",
+                        help="continue the run in DIR, stopped (interrupted, failed or killed) after some steps, from its last "
+                             "saved step: a run made with --save-state; its own settings, results.json's config, are used, and "
+                             "an option given beside --resume must have the recorded value")
+
+
+def given_options(parser, argv):
+    """The names (dests) of the options that argv gives, whatever their value: argparse fills in a
+    default only where the namespace has no value yet, so those left at a marker were not given."""
+    import argparse
+    unset = object()
+    names = [a.dest for a in parser._actions if a.dest != argparse.SUPPRESS and a.dest != "help"]
+    ns = argparse.Namespace(**{n: unset for n in names})
+    for a in parser._actions:
+        if isinstance(a, argparse._AppendAction):
+            setattr(ns, a.dest, [])  # appended to: given when not empty
+    parser.parse_args(argv, ns)
+    return {n for n in names if getattr(ns, n) is not unset and getattr(ns, n) != []}
+
+
+def _json_value(v):
+    import json
+    return json.loads(json.dumps(v, default=float))
+
+
+def resumed_test(folder, given_test=None, given=()):
+    """The SwellingTest of the run to resume in `folder`, from its results.json's config (out:
+    `folder`). Refused, in the one message form, before any work: a folder without a swelling test's
+    results.json, a run that finished, one without its saved state (made without --save-state), and
+    an option among `given` (names of SwellingTest fields, given_options()) whose value in
+    `given_test` differs from the recorded one (another setting would not continue this run)."""
+    from . import report
+    from .dem.recorder import STATE_FILE
+    if not isinstance(folder, str) or not os.path.isdir(folder):
+        _bad("resume", folder, "the folder of a run made with --save-state")
+    try:
+        res = report.load_results(os.path.join(folder, "results.json"))
+    except report.ResultsError as e:
+        _bad("resume", folder, f"the folder of a run made with --save-state ({e})")
+    if res["status"] == "finished":
+        _bad("resume", folder, "the folder of a run that did not finish (this one finished)")
+    if not os.path.exists(os.path.join(folder, STATE_FILE)):
+        _bad("resume", folder, f"the folder of a run made with --save-state (no {STATE_FILE} in it)")
+    cfg = res.get("config") or {}
+    names = [f.name for f in fields(SwellingTest)]
+    kw = {n: cfg[n] for n in names if n in cfg}
+    kw["size_mm"] = tuple(kw.get("size_mm", ()))
+    kw["out"] = folder
+    test = SwellingTest(**kw)
+    for name in sorted(set(given) & set(names)):
+        mine = getattr(given_test, name)
+        if name == "out":
+            if os.path.abspath(mine) != os.path.abspath(folder):
+                _bad("out", mine, f"{folder}, the folder --resume continues, or left out")
+        elif _json_value(mine) != _json_value(getattr(test, name)):
+            _bad(name, mine, f"{getattr(test, name)!r}, the run's in {folder} (--resume continues it with its own settings)")
+    return test
 
 
 def _job_folder_name(description, line):
@@ -697,21 +762,29 @@ def batch_tags():
     return {k: tags[k] for k in BATCH_TAGS if k in tags.keys()}
 
 
-def run(test, prepared=None, extra_times=(), after_step=None):
+def run(test, prepared=None, extra_times=(), after_step=None, resume=False):
     """Runs one swelling test inside YADE; writes results.json, tables, plots and VTK into test.out.
     Order: prepare() (Python checks, then the plugin objects, whose constructors validate; pass
     its result as `prepared` to check before other work, with the same extra_times), then the
     mesostructure, the (macro) calibration, the scene and the run.
     extra_times [day]: see prepare(); after_step: a callable run without arguments after the
-    recorder at every converged step (e.g. saving the scene at a test age, swelldem.residual)."""
+    recorder at every converged step (e.g. saving the scene at a test age, swelldem.residual).
+    resume: go on with the run in test.out (resumed_test() gives its test) from its saved state:
+    the scene is built again as the run built it (its assembly.npz), which gives the recorder the
+    run's start, then the state (recorder.STATE_FILE) is loaded over it and the run goes on; the
+    results of the steps done are kept, results.json's 'resumed' lists each resume."""
     kinds, solver = prepared or prepare(test, extra_times)
     from . import report
     from .dem import recorder
     from .dem import scene as dem_scene
     t0 = time.time()
     os.makedirs(test.out, exist_ok=True)
-    assembly = make_assembly(test)
-    assembly.save(os.path.join(test.out, "assembly.npz"))
+    if resume:
+        from . import meso
+        assembly = meso.load(os.path.join(test.out, "assembly.npz"))
+    else:
+        assembly = make_assembly(test)
+        assembly.save(os.path.join(test.out, "assembly.npz"))
     built = build(test, (kinds, solver), assembly=assembly, t0=t0)
     ys, cal, gel, bars, platens, lay, d_inf = built.scene, built.calibration, built.gel, built.bars, built.platens, built.layout, built.d_inf
     r_mean = built.r_mean
@@ -731,7 +804,21 @@ def run(test, prepared=None, extra_times=(), after_step=None):
                         "disc_radius_m": lay.radius_m, "young_Pa": lay.young, "yield_stress_Pa": lay.yield_stress, "yield_day": None,
                         "n_bond_contacts": bars.n_bond}
         res["rebar_stress_max_Pa"], res["rebar_stress_mean_Pa"] = [], []
-    rec = recorder.StepRecorder(assembly, ys, solver, res, test.out, vtk_every=test.vtk_every, platens=platens, bars=bars)
+    if resume:  # the recorded results, not the fresh ones (the configuration is the run's)
+        res = report.load_results(os.path.join(test.out, "results.json"))
+        res["status"] = "running"
+    rec = recorder.StepRecorder(assembly, ys, solver, res, test.out, vtk_every=test.vtk_every, platens=platens, bars=bars,
+                                save_state=test.save_state, resuming=resume)
+    if resume:
+        from .plugin import require
+        yade, _ = require("swelldem.scenario.run")
+        state = os.path.join(test.out, recorder.STATE_FILE)
+        yade.Omega().load(state)
+        solver = yade.Omega().engines[-1]
+        t0 -= float(res.get("wall_s") or 0.0)  # wall_s counts the sessions before
+        done = rec.resume(solver)
+        res.setdefault("resumed", []).append({"steps_done": done, "time": time.time()})
+        print(f"swelldem: resumed from {state}: {done} of {solver.nSteps} physical steps done", flush=True)
     solver.stepHook = rec if after_step is None else (lambda: (rec(), after_step()))
     handlers = _catch_stop_signals()
     try:
@@ -754,6 +841,9 @@ def run(test, prepared=None, extra_times=(), after_step=None):
         for sig, handler in handlers.items():
             signal.signal(sig, handler)
     rec.export_vtk()
+    if test.save_state:
+        recorder.save_scene(os.path.join(test.out, recorder.FINAL_FILE))
+        os.remove(os.path.join(test.out, recorder.STATE_FILE))  # the same scene as the final one
     report.write_results(test.out, res)
     report.write_all(test.out, res, assembly, recorder.broken_contacts(rec.bonded))
     return res

@@ -83,3 +83,25 @@ def plugin_classes():
     with open(os.path.join(REPO, "pkg", "yade", "PluginRegistry.cpp")) as f:
         listed = f.read().split("#define SWELLDEM_PLUGIN_CLASSES(X)")[1].split("\n\n")[0]
     return sorted(tok[2:-1] for tok in listed.replace("\\", " ").split() if tok.startswith("X("))
+
+
+def _vtk_arrays(data):
+    """{name: numpy array (numeric) or list of str (a vtkStringArray)} of a VTK field, point or cell data."""
+    from vtk.util.numpy_support import vtk_to_numpy
+    out = {}
+    for i in range(data.GetNumberOfArrays()):
+        a = data.GetAbstractArray(i)
+        out[a.GetName()] = ([a.GetValue(k) for k in range(a.GetNumberOfValues())] if a.IsA("vtkStringArray")
+                            else vtk_to_numpy(a))
+    return out
+
+
+def read_vtp(path):
+    """A ParaView .vtp file of a run read with VTK's own reader (python3-vtk9): (vtkPolyData, cell
+    arrays, point arrays, field arrays), each {name: numpy array or list of str}."""
+    vtk = pytest.importorskip("vtk", reason="the ParaView files are read with VTK's reader: apt-get install python3-vtk9")
+    r = vtk.vtkXMLPolyDataReader()
+    r.SetFileName(str(path))
+    r.Update()
+    poly = r.GetOutput()
+    return poly, _vtk_arrays(poly.GetCellData()), _vtk_arrays(poly.GetPointData()), _vtk_arrays(poly.GetFieldData())

@@ -96,14 +96,8 @@ def test_extreme_runs_with_an_equilibrium_finish(tmp_path, name, args, solver):
 
 def last_contacts(out):
     """Cell arrays of the last step's contacts file (the run writes the last step's VTK files)."""
-    vtk = pytest.importorskip("vtk", reason="the contacts are read with VTK's reader: apt-get install python3-vtk9")
-    from vtk.util.numpy_support import vtk_to_numpy
-    path = sorted((out / "vtk").glob("contacts_*.vtp"))[-1]
-    r = vtk.vtkXMLPolyDataReader()
-    r.SetFileName(str(path))
-    r.Update()
-    cells = r.GetOutput().GetCellData()
-    return {cells.GetArrayName(i): vtk_to_numpy(cells.GetArray(i)) for i in range(cells.GetNumberOfArrays())}
+    from conftest import read_vtp
+    return read_vtp(sorted((out / "vtk").glob("contacts_*.vtp"))[-1])[1]
 
 
 

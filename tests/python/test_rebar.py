@@ -2,6 +2,7 @@
 """Reinforcing bars (swelldem.dem.rebar): layout and carving in plain Python; with real YADE, the
 swelling of reinforced specimens against the unreinforced one, the bar stress against the forces
 of its STEEL contacts read from the scene, the yield report, and bad input."""
+import csv
 import json
 import os
 import subprocess
@@ -93,6 +94,10 @@ def test_bars_restrain_the_expansion_along_them_and_carry_tension(tmp_path):
     for rho, r in runs.items():
         smax, smean = np.array(r["rebar_stress_max_Pa"]), np.array(r["rebar_stress_mean_Pa"])
         assert len(smax) == len(smean) == len(r["times_days"]) and smean[-1] > 0 and np.all(smax >= smean)
+        with open(tmp_path / f"rho{rho}" / "curves.csv") as f:  # the bars' stress curves, in Pa, beside the strains
+            head, *rows = list(csv.reader(f))
+        assert [float(row[head.index("rebar_stress_max [Pa]")]) for row in rows] == list(smax)
+        assert [float(row[head.index("rebar_stress_mean [Pa]")]) for row in rows] == list(smean)
         # the mean stress is E_s times the bar's elongation over its length, which cannot much exceed
         # the free expansion of the concrete it is bonded to: the bar line's own elongation against
         # the specimen's affine fit, measured 1.04 times it for the softest bar (bound 1.15)
@@ -126,10 +131,9 @@ dump({{"fn": [i.phys.Fn for i in steel], "area": [i.phys.area for i in steel], "
 def test_bar_stress_is_the_bar_force_over_its_section(yade_run, tmp_path):
     r = yade_run(BAR_STRESS.format(py=os.path.join(REPO, "py")))
     # the ParaView file marks the bar's discs (steel = 1): as many as the bar spans the width with
-    import re
-    vtp = sorted((tmp_path / "run" / "vtk").glob("particles_*.vtp"))[-1].read_text()
-    steel = re.search(r'Name="steel"[^>]*>([^<]*)<', vtp).group(1).split()
-    assert sum(int(v) for v in steel) == r["bar_discs"] > 0
+    from conftest import read_vtp
+    steel = read_vtp(sorted((tmp_path / "run" / "vtk").glob("particles_*.vtp"))[-1])[1]["steel"]
+    assert steel.sum() == r["bar_discs"] > 0
     section = r["thickness"] * 1.0  # thickness of the model: the generator's default 1 m
     assert np.allclose(r["area"], section)
     assert r["reported"] == pytest.approx(max(r["fn"]) / section, rel=1e-12)

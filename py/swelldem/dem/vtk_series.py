@@ -3,83 +3,108 @@
 particles and one of the contacts, and one .pvd collection of each that lists every file with its
 physical time [day] (ParaView's time).
 
-Written with plain Python (ASCII .vtp): YADE's VTKExporter writes discs as vertices without cells
-and has no field data, so ParaView would show nothing before a Glyph filter and would have no time.
+Written with VTK's own writer (python3-vtk9): binary, zlib-compressed appended data. YADE's VTKExporter writes discs as vertices without cells and has
+no field data, so ParaView would show nothing before a Glyph filter and would have no time.
 
 particles_<step>.vtp: one polygon cell per disc (a regular N-gon inscribed in the disc, in the
-plane z = 0); cell data:
-  id [-] body id, radius [m], aggregateId [-] (-1 mortar, else the aggregate polygon's index),
-  steel [-] 1 for the discs of a reinforcing bar (swelldem.dem.rebar), else 0,
-  displacement [m] (3 components, YADE's state.displ()).
-contacts_<step>.vtp: one line cell per real interaction, between the two disc centres (points: the
-centres of all bodies, point data id); cell data:
-  kindId [-] (lookup in the field data, below), Fn [N] normal force, tension positive; Fs [N]
+plane z = 0; its vertices in single precision, a drawing).
+  point data: displacement [m] (3 components, YADE's state.displ() of the disc, the same at its
+    polygon's every vertex: Warp By Vector moves the discs as they moved).
+  cell data: id [-] body id, radius [m], aggregateId [-] (-1 mortar, else the aggregate polygon's
+    index), steel [-] 1 for the discs of a reinforcing bar (swelldem.dem.rebar), else 0;
+    stress [Pa] the disc's Love-Weber mean stress tensor (9 components, tension positive; see
+    disc_state), meanStress [Pa] its in-plane mean (sigma_xx + sigma_yy) / 2;
+    damage [-] the share of the disc's bonded contacts (those bonded at the start) broken since,
+    bondedContacts [-] their number (damage is 0 for a disc without any).
+contacts_<step>.vtp: one line cell per real interaction, between the two disc centres.
+  point data (the centres of all discs): id, displacement [m] (as in the particles' file).
+  cell data: kindId [-] and kind (its name, a string), Fn [N] normal force, tension positive; Fs [N]
   shear force; area [m2] facet area; strength [N] tensile strength fnMax (0 where the contact has
   none: damage off, or a contact born broken); FnOverStrength [-] Fn / fnMax (0 where no strength);
   broken [-] 0/1; failureMode [-] 0 intact, 1 tension, 2 shear; bonded [-] 1 for a contact bonded at
   the start of the run, 0 for one made during it; crackOpening [m] of a broken contact, FnHat / kn
   (the normal opening beyond its stress-free state; 0 when closed or intact).
-Platens (swelldem.dem.platens) and their contacts are left out; their stress is in results.json.
-Field data of both: TimeValue [day], step [-] (index into results.json's times_days) and the kind
-name table kindId_MORTAR = 0, kindId_ITZ = 1, kindId_AGG = 2, kindId_PLATEN = 3, kindId_STEEL = 4, kindId_BOND = 5 (VTK's ASCII XML has no portable
-string array, and ParaView colours by integer arrays, e.g. with "Interpret Values As Categories").
+Platens (swelldem.dem.platens) and their contacts are left out of the drawing (their stress is in
+results.json); their forces on the discs count in the discs' stress.
+Field data of both: TimeValue [day], step [-] (index into results.json's times_days), kindNames
+(string array: the name of kindId k at index k, '' where no kind has the id) and the same table
+as integers kindId_MORTAR = 0, kindId_ITZ = 1, kindId_AGG = 2, kindId_PLATEN = 3, kindId_STEEL = 4,
+kindId_BOND = 5.
 """
 import glob
 import math
 import os
 
+import numpy as np
+
+from ..meso.paraview import cell_array, vtk_array
 from ..paper import KIND_IDS, STRUCTURE_KIND_IDS
 from ..plugin import require
 
 #: Sides of the polygon drawn for each disc.
 DISC_SIDES = 16
+#: kindId -> name, every kind of the scenes (MORTAR, ITZ, AGG and the structures').
+KIND_BY_ID = {k: name for name, k in {**KIND_IDS, **STRUCTURE_KIND_IDS}.items()}
 
 
 def _yade():
     return require("swelldem.dem.vtk_series")
 
 
-def _numbers(values):
-    # repr of a Python float round-trips exactly: the files hold the scene's values, not rounded ones
-    return " ".join(repr(v) for v in values)
+def _vtk():
+    import vtk  # python3-vtk9 (scripts/bootstrap.sh)
+    return vtk
 
 
-def _data_array(name, vtk_type, values, components=1):
-    return (f'<DataArray type="{vtk_type}" Name="{name}" NumberOfComponents="{components}" format="ascii">'
-            f"{_numbers(values)}</DataArray>")
+def _string_array(vtk, name, values):
+    arr = vtk.vtkStringArray()
+    arr.SetName(name)
+    arr.SetNumberOfValues(len(values))
+    for k, v in enumerate(values):
+        arr.SetValue(k, v)
+    return arr
 
 
-def _field_data(time_days, step):
-    arrays = [f'<Array type="Float64" Name="TimeValue" NumberOfTuples="1" format="ascii">{float(time_days)!r}</Array>',
-              f'<Array type="Int32" Name="step" NumberOfTuples="1" format="ascii">{int(step)}</Array>']
-    arrays += [f'<Array type="Int32" Name="kindId_{name}" NumberOfTuples="1" format="ascii">{k}</Array>'
-               for name, k in {**KIND_IDS, **STRUCTURE_KIND_IDS}.items()]
-    return "<FieldData>" + "".join(arrays) + "</FieldData>"
+def _field_data(vtk, data, time_days, step):
+    field = data.GetFieldData()
+    field.AddArray(vtk_array(vtk, "TimeValue", [float(time_days)], np.float64))
+    field.AddArray(vtk_array(vtk, "step", [int(step)], np.int32))
+    field.AddArray(_string_array(vtk, "kindNames", [KIND_BY_ID.get(k, "") for k in range(max(KIND_BY_ID) + 1)]))
+    for k, name in sorted(KIND_BY_ID.items()):
+        field.AddArray(vtk_array(vtk, f"kindId_{name}", [k], np.int32))
 
 
-def write_polydata(path, points, cell_type, connectivity, offsets, cell_data, point_data=(), time_days=0.0, step=0):
-    """One ASCII VTK XML PolyData file.
+def write_polydata(path, points, cell_type, offsets, connectivity, cell_data=(), point_data=(), time_days=0.0, step=0,
+                   point_type=np.float64):
+    """One VTK XML PolyData file, binary with zlib-compressed appended data.
 
-    points: (x, y, z) tuples [m]; cell_type: 'Polys' or 'Lines'; connectivity, offsets: VTK's
-    cell arrays (point indices, and the end of each cell in connectivity); cell_data, point_data:
-    (name, VTK type e.g. 'Float64' or 'Int32', flat values, components) tuples; time_days [day] and
-    step [-] go into the field data (TimeValue, step) with the kind name table. Written to a
-    temporary file, then renamed: a reader never sees half a file."""
-    n_cells = len(offsets)
-    counts = {k: (n_cells if k == cell_type else 0) for k in ("Verts", "Lines", "Strips", "Polys")}
-    parts = ['<?xml version="1.0"?>',
-             '<VTKFile type="PolyData" version="0.1" byte_order="LittleEndian">', "<PolyData>",
-             _field_data(time_days, step),
-             f'<Piece NumberOfPoints="{len(points)}" NumberOfVerts="{counts["Verts"]}" NumberOfLines="{counts["Lines"]}" '
-             f'NumberOfStrips="{counts["Strips"]}" NumberOfPolys="{counts["Polys"]}">',
-             "<PointData>" + "".join(_data_array(*a) for a in point_data) + "</PointData>",
-             "<CellData>" + "".join(_data_array(*a) for a in cell_data) + "</CellData>",
-             "<Points>" + _data_array("Points", "Float64", [c for p in points for c in p], 3) + "</Points>",
-             f"<{cell_type}>" + _data_array("connectivity", "Int64", connectivity) + _data_array("offsets", "Int64", offsets)
-             + f"</{cell_type}>",
-             "</Piece>", "</PolyData>", "</VTKFile>", ""]
-    with open(path + ".tmp", "w") as f:
-        f.write("\n".join(parts))
+    points: (n, 3) [m], stored as point_type; cell_type: 'Polys' or 'Lines'; offsets (cells + 1, from 0), connectivity:
+    VTK's cell arrays; cell_data, point_data: (name, numpy dtype, values (n,) or (n, k)) tuples, or
+    (name, str, list of strings) for a string array; time_days [day] and step [-] go into the field
+    data with the kind name table. Written to a temporary file, then renamed: a reader never sees
+    half a file."""
+    vtk = _vtk()
+    poly = vtk.vtkPolyData()
+    pts = vtk.vtkPoints()
+    pts.SetData(vtk_array(vtk, "Points", np.asarray(points, dtype=np.float64).reshape(-1, 3), point_type))
+    poly.SetPoints(pts)
+    cells = cell_array(vtk, offsets, connectivity)
+    if cell_type == "Polys":
+        poly.SetPolys(cells)
+    else:
+        poly.SetLines(cells)
+    for target, arrays in ((poly.GetCellData(), cell_data), (poly.GetPointData(), point_data)):
+        for name, kind, values in arrays:
+            target.AddArray(_string_array(vtk, name, values) if kind is str else vtk_array(vtk, name, values, kind))
+    _field_data(vtk, poly, time_days, step)
+    w = vtk.vtkXMLPolyDataWriter()
+    w.SetFileName(path + ".tmp")
+    w.SetInputData(poly)
+    w.SetDataModeToAppended()
+    w.EncodeAppendedDataOff()  # raw bytes: base64 would add a third
+    w.SetCompressorTypeToZLib()
+    if not w.Write():
+        raise OSError(f"swelldem: VTK could not write {path}")
     os.replace(path + ".tmp", path)
 
 
@@ -93,50 +118,119 @@ def write_pvd(path, entries):
     os.replace(path + ".tmp", path)
 
 
-def particle_cells(sides=DISC_SIDES):
-    """Points, connectivity, offsets and cell data of the discs of O as polygons of `sides` sides."""
-    yade, _ = _yade()
-    O = yade.Omega()
-    ring = [(math.cos(2 * math.pi * k / sides), math.sin(2 * math.pi * k / sides)) for k in range(sides)]
-    points, ids, radius, agg, steel, displ = [], [], [], [], [], []
-    for b in O.bodies:
-        if b is None or not _is_disc(b):
-            continue
-        x, y, r = float(b.state.pos[0]), float(b.state.pos[1]), float(b.shape.radius)
-        points += [(x + r * c, y + r * s, 0.0) for c, s in ring]
-        ids.append(b.id)
-        radius.append(r)
-        agg.append(int(getattr(b.material, "aggregateId", -1)))
-        steel.append(int(bool(getattr(b.material, "steel", False))))
-        displ += [float(v) for v in b.state.displ()]
-    n = len(ids)
-    connectivity = range(n * sides)
-    offsets = [sides * (k + 1) for k in range(n)]
-    cells = [("id", "Int32", ids, 1), ("radius", "Float64", radius, 1), ("aggregateId", "Int32", agg, 1), ("steel", "Int32", steel, 1),
-             ("displacement", "Float64", displ, 3)]
-    return points, connectivity, offsets, cells
-
-
 def _is_disc(body):
     """Discs only: platens (Wall bodies, swelldem.dem.platens) have no radius and no place in these files."""
     return hasattr(body.shape, "radius")
 
 
+def _pair(i):
+    return (i.id1, i.id2) if i.id1 < i.id2 else (i.id2, i.id1)
+
+
+def disc_state(discs, cell_area=None, thickness=1.0, bonded=None):
+    """Per disc of `discs` (YADE bodies): (stress (n, 3, 3) [Pa], damage (n,) [-], bonded contacts (n,)).
+
+    stress: Love-Weber's mean stress of the disc, sigma = (1/V) sum_c f_c (x) l_c (sigma_ij = (1/V)
+    sum_c f_i l_j) over its real interactions, f_c the contact's force on the disc (normal and
+    shear, YADE's phys.normalForce + shearForce, tension positive), l_c the branch vector from the
+    disc's centre to the contact point (geom.contactPoint); V = A t, A the disc's Laguerre cell area
+    (cell_area[body id] [m2], the mesostructure's assembly.cell_area_m2; for a disc beyond it, a bar's,
+    or without cell_area, (2 r)^2, the square of a disc in a row of touching discs) and t = thickness
+    [m], the scene's (1 m by default). Returned symmetrised: a disc in equilibrium has a symmetric
+    sum, and its antisymmetric part is the round-off of the moment balance. sigma_zz = 0.
+    damage: the share of the disc's contacts to other discs bonded at the start (bonded: the
+    (id1 < id2) pairs, recorder.bonded_pairs(); None: every real interaction of O counts as bonded)
+    that are broken or gone; 0 for a disc with none."""
+    yade, _ = _yade()
+    O = yade.Omega()
+    index = {b.id: k for k, b in enumerate(discs)}
+    n = len(discs)
+    pos = np.array([[float(b.state.pos[0]), float(b.state.pos[1])] for b in discs]).reshape(n, 2)
+    radius = np.array([float(b.shape.radius) for b in discs])
+    area = (2 * radius) ** 2
+    if cell_area is not None:
+        ids = np.array([b.id for b in discs], dtype=int)
+        have = ids < len(cell_area)
+        area[have] = np.asarray(cell_area, dtype=float)[ids[have]]
+    total = np.zeros(n, dtype=int)
+    intact = np.zeros(n, dtype=int)
+    whole = set()  # unbroken pairs of discs
+    side, force, point = [], [], []  # per (contact, disc of it): the disc, the force on it, the contact point
+    for i in O.interactions:
+        if not i.isReal:
+            continue
+        f = i.phys.normalForce + i.phys.shearForce  # the law's force on id2; on id1 its opposite
+        fx, fy = float(f[0]), float(f[1])
+        cp = (float(i.geom.contactPoint[0]), float(i.geom.contactPoint[1]))
+        for body, sign in ((i.id1, -1.0), (i.id2, 1.0)):
+            k = index.get(body)
+            if k is not None:
+                side.append(k)
+                force.append((sign * fx, sign * fy))
+                point.append(cp)
+        if i.id1 in index and i.id2 in index:
+            if bonded is None:
+                for body in (i.id1, i.id2):
+                    total[index[body]] += 1
+                    intact[index[body]] += not i.phys.broken
+            elif not i.phys.broken:
+                whole.add(_pair(i))
+    for a, b in bonded or ():
+        if a in index and b in index:
+            for body in (a, b):
+                total[index[body]] += 1
+                intact[index[body]] += (a, b) in whole
+    side = np.array(side, dtype=int)
+    force, branch = np.array(force).reshape(-1, 2), np.array(point).reshape(-1, 2) - pos[side]
+    moment = np.zeros((n, 2, 2))
+    np.add.at(moment, side, force[:, :, None] * branch[:, None, :])
+    sym = 0.5 * (moment + moment.transpose(0, 2, 1)) / (area * thickness)[:, None, None]
+    stress = np.zeros((n, 3, 3))
+    stress[:, :2, :2] = sym
+    damage = np.where(total > 0, (total - intact) / np.maximum(total, 1), 0.0)
+    return stress, damage, total
+
+
+def particle_cells(sides=DISC_SIDES, cell_area=None, thickness=1.0, bonded=None):
+    """Points, offsets, connectivity, cell data and point data of the discs of O as polygons of
+    `sides` sides; cell_area, thickness, bonded: see disc_state."""
+    yade, _ = _yade()
+    discs = [b for b in yade.Omega().bodies if b is not None and _is_disc(b)]
+    n = len(discs)
+    centre = np.array([[float(b.state.pos[0]), float(b.state.pos[1])] for b in discs]).reshape(n, 2)
+    radius = np.array([float(b.shape.radius) for b in discs])
+    angle = 2 * math.pi * np.arange(sides) / sides
+    ring = np.stack([np.cos(angle), np.sin(angle)], axis=1)
+    points = np.zeros((n, sides, 3))
+    points[:, :, :2] = centre[:, None, :] + radius[:, None, None] * ring[None, :, :]
+    displ = np.array([[float(v) for v in b.state.displ()] for b in discs]).reshape(n, 3)
+    stress, damage, total = disc_state(discs, cell_area, thickness, bonded)
+    cells = [("id", np.int32, [b.id for b in discs]), ("radius", np.float64, radius),
+             ("aggregateId", np.int32, [int(getattr(b.material, "aggregateId", -1)) for b in discs]),
+             ("steel", np.int32, [int(bool(getattr(b.material, "steel", False))) for b in discs]),
+             ("stress", np.float64, stress.reshape(n, 9)), ("meanStress", np.float64, 0.5 * (stress[:, 0, 0] + stress[:, 1, 1])),
+             ("damage", np.float64, damage), ("bondedContacts", np.int32, total)]
+    point_data = [("displacement", np.float64, np.repeat(displ, sides, axis=0))]
+    offsets = sides * np.arange(n + 1)
+    return points.reshape(-1, 3), offsets, np.arange(n * sides), cells, point_data
+
+
 def contact_cells(bonded=None):
-    """Points (all disc centres), connectivity, offsets, cell data and point data of the real
+    """Points (all disc centres), offsets, connectivity, cell data and point data of the real
     interactions of O as lines; bonded: the (id1, id2) pairs (id1 < id2) bonded at the start
     (recorder.bonded_pairs(); None: all)."""
     yade, _ = _yade()
     O = yade.Omega()
-    index, points, pid = {}, [], []
+    index, points, pid, displ = {}, [], [], []
     for b in O.bodies:
         if b is None or not _is_disc(b):
             continue
         index[b.id] = len(points)
         points.append((float(b.state.pos[0]), float(b.state.pos[1]), 0.0))
         pid.append(b.id)
-    conn, cols = [], {k: [] for k in ("kindId", "Fn", "Fs", "area", "strength", "FnOverStrength", "broken", "failureMode",
-                                      "bonded", "crackOpening")}
+        displ.append([float(v) for v in b.state.displ()])
+    conn, cols = [], {k: [] for k in ("kindId", "kind", "Fn", "Fs", "area", "strength", "FnOverStrength", "broken",
+                                      "failureMode", "bonded", "crackOpening")}
     for i in O.interactions:
         if not i.isReal or i.id1 not in index or i.id2 not in index:  # platen contacts: results.json has their stress
             continue
@@ -145,6 +239,7 @@ def contact_cells(bonded=None):
         fn, fn_max = float(p.Fn), float(p.fnMax)
         has_strength = math.isfinite(fn_max) and fn_max > 0
         cols["kindId"].append(int(p.kindId))
+        cols["kind"].append(KIND_BY_ID.get(int(p.kindId), str(p.kindId)))
         cols["Fn"].append(fn)
         cols["Fs"].append(float(p.Fs))
         cols["area"].append(float(p.area))
@@ -152,29 +247,37 @@ def contact_cells(bonded=None):
         cols["FnOverStrength"].append(fn / fn_max if has_strength else 0.0)
         cols["broken"].append(int(bool(p.broken)))
         cols["failureMode"].append(int(p.failureMode))
-        pair = (i.id1, i.id2) if i.id1 < i.id2 else (i.id2, i.id1)
-        cols["bonded"].append(int(bonded is None or pair in bonded))
+        cols["bonded"].append(int(bonded is None or _pair(i) in bonded))
         cols["crackOpening"].append(max(float(p.FnHat), 0.0) / float(p.kn) if p.broken and p.kn > 0 else 0.0)
     ints = {"kindId", "broken", "failureMode", "bonded"}
-    cells = [(k, "Int32" if k in ints else "Float64", v, 1) for k, v in cols.items()]
-    offsets = [2 * (c + 1) for c in range(len(conn) // 2)]
-    return points, conn, offsets, cells, [("id", "Int32", pid, 1)]
+    cells = [(k, str if k == "kind" else np.int32 if k in ints else np.float64, v) for k, v in cols.items()]
+    offsets = 2 * np.arange(len(conn) // 2 + 1)
+    point_data = [("id", np.int32, pid), ("displacement", np.float64, np.array(displ).reshape(-1, 3))]
+    return np.array(points).reshape(-1, 3), offsets, conn, cells, point_data
 
 
 class VtkSeries:
     """The ParaView time series of a run in folder `vtk_dir`: export(step, time_days) writes
     particles_<step>.vtp and contacts_<step>.vtp and rewrites particles.pvd and contacts.pvd with
     every file exported so far. Files of an earlier run in the folder are removed when the series
-    is made, so the collections list only this run's. bonded: see contact_cells; sides: of each
-    disc's polygon."""
+    is made, but for those of the steps before `keep_before` listed in its particles.pvd, with which
+    the series goes on (a resumed run). bonded: see contact_cells; sides: of each disc's polygon; cell_area [m2] by body id and
+    thickness [m]: the discs' volumes for their stress (disc_state; a run passes its assembly's)."""
 
-    def __init__(self, vtk_dir, bonded=None, sides=DISC_SIDES):
+    def __init__(self, vtk_dir, bonded=None, sides=DISC_SIDES, cell_area=None, thickness=1.0, keep_before=0):
         self.dir, self.bonded, self.sides = vtk_dir, bonded, sides
+        self.cell_area, self.thickness = cell_area, thickness
         self.entries = []  # (step, time [day])
         os.makedirs(vtk_dir, exist_ok=True)
+        if keep_before:
+            self.entries = [(s, t) for s, t in _pvd_entries(os.path.join(vtk_dir, "particles.pvd")) if s < keep_before]
+        kept = {f"{w}_{s:05d}.vtp" for s, _ in self.entries for w in ("particles", "contacts")}
         for pattern in ("particles_*.vtp", "contacts_*.vtp", "particles.pvd", "contacts.pvd", "swelling-*.vtk"):
             for f in glob.glob(os.path.join(vtk_dir, pattern)):
-                os.remove(f)
+                if os.path.basename(f) not in kept:
+                    os.remove(f)
+        if self.entries:
+            self._write_collections()
 
     def exported(self, step):
         """Whether step (index into times_days) has been written."""
@@ -183,12 +286,27 @@ class VtkSeries:
     def export(self, step, time_days):
         """Writes the scene of O now as step `step` at physical time time_days [day]."""
         name = f"{step:05d}.vtp"
-        pts, conn, offs, cells = particle_cells(self.sides)
-        write_polydata(os.path.join(self.dir, "particles_" + name), pts, "Polys", conn, offs, cells,
-                       time_days=time_days, step=step)
-        pts, conn, offs, cells, pdata = contact_cells(self.bonded)
-        write_polydata(os.path.join(self.dir, "contacts_" + name), pts, "Lines", conn, offs, cells, pdata,
+        pts, offs, conn, cells, pdata = particle_cells(self.sides, self.cell_area, self.thickness, self.bonded)
+        # the polygons are a drawing: single precision (a third of the file less; the centres are
+        # exact in the contacts' file, the displacements in both)
+        write_polydata(os.path.join(self.dir, "particles_" + name), pts, "Polys", offs, conn, cells, pdata,
+                       time_days=time_days, step=step, point_type=np.float32)
+        pts, offs, conn, cells, pdata = contact_cells(self.bonded)
+        write_polydata(os.path.join(self.dir, "contacts_" + name), pts, "Lines", offs, conn, cells, pdata,
                        time_days=time_days, step=step)
         self.entries.append((step, float(time_days)))
+        self._write_collections()
+
+    def _write_collections(self):
         for what in ("particles", "contacts"):
             write_pvd(os.path.join(self.dir, what + ".pvd"), [(t, f"{what}_{s:05d}.vtp") for s, t in self.entries])
+
+
+def _pvd_entries(path):
+    """(step, time [day]) of the files a collection written by write_pvd lists ([] without one)."""
+    import xml.etree.ElementTree as ET
+    try:
+        root = ET.parse(path).getroot()
+    except (OSError, ET.ParseError):
+        return []
+    return [(int(d.get("file").rsplit("_", 1)[1].split(".")[0]), float(d.get("timestep"))) for d in root.iter("DataSet")]

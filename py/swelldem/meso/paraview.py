@@ -1,8 +1,8 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 """A 3D mesostructure as a ParaView file (VTK XML multiblock, written with python3-vtk9).
 
-The mesostructure exists before any YADE scene, so it is written with VTK's own writers; the runs'
-fields go through YADE's exporters (swelldem.dem.vtk_series). One ``.vtm`` file with three blocks,
+Written with VTK's own writers, as the runs' fields are (swelldem.dem.vtk_series, which shares
+vtk_array and cell_array). One ``.vtm`` file with three blocks,
 in mm (the unit of the generator's parameters):
 
 - ``spheres``: a vertex per sphere with point data ``radius`` [mm], ``aggregate_id`` (-1 mortar),
@@ -19,16 +19,27 @@ import numpy as np
 MM = 1e3  # millimetres per metre
 
 
-def _array(vtk, name, values, kind):
+def vtk_array(vtk, name, values, kind):
+    """A named VTK data array holding a copy of `values` as numpy dtype `kind` (an (n, k) array: k
+    components)."""
     from vtk.util.numpy_support import numpy_to_vtk
     arr = numpy_to_vtk(np.ascontiguousarray(values, dtype=kind), deep=True)
     arr.SetName(name)
     return arr
 
 
+def cell_array(vtk, offsets, connectivity):
+    """A vtkCellArray of VTK's offsets (n + 1, from 0) and connectivity (point indices) arrays."""
+    from vtk.util.numpy_support import numpy_to_vtkIdTypeArray
+    cells = vtk.vtkCellArray()
+    cells.SetData(numpy_to_vtkIdTypeArray(np.ascontiguousarray(offsets, dtype=np.int64), deep=True),
+                  numpy_to_vtkIdTypeArray(np.ascontiguousarray(connectivity, dtype=np.int64), deep=True))
+    return cells
+
+
 def _polydata(vtk, points, polygons):
     """vtkPolyData of (k, 3) points and a list of index arrays, one polygon each (None: one vertex a point)."""
-    from vtk.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
+    from vtk.util.numpy_support import numpy_to_vtk
     pd = vtk.vtkPolyData()
     pts = vtk.vtkPoints()
     pts.SetData(numpy_to_vtk(np.ascontiguousarray(points, dtype=np.float64), deep=True))
@@ -40,8 +51,7 @@ def _polydata(vtk, points, polygons):
     else:
         conn = np.concatenate(polygons).astype(np.int64) if polygons else np.zeros(0, np.int64)
         offs = np.concatenate([[0], np.cumsum([len(p) for p in polygons])]).astype(np.int64)
-    cells = vtk.vtkCellArray()
-    cells.SetData(numpy_to_vtkIdTypeArray(offs, deep=True), numpy_to_vtkIdTypeArray(conn, deep=True))
+    cells = cell_array(vtk, offs, conn)
     if polygons is None:
         pd.SetVerts(cells)
     else:
@@ -62,20 +72,20 @@ def write_vtm(assembly, path):
 
     spheres = _polydata(vtk, np.stack([a.x, a.y, a.z], axis=1) * MM, None)
     pdata = spheres.GetPointData()
-    pdata.AddArray(_array(vtk, "radius", a.r * MM, np.float64))
-    pdata.AddArray(_array(vtk, "aggregate_id", a.aggregate_id, np.int32))
-    pdata.AddArray(_array(vtk, "material", a.material, np.int32))
-    pdata.AddArray(_array(vtk, "cell_volume", a.cell_volume_m3 * MM ** 3, np.float64))
+    pdata.AddArray(vtk_array(vtk, "radius", a.r * MM, np.float64))
+    pdata.AddArray(vtk_array(vtk, "aggregate_id", a.aggregate_id, np.int32))
+    pdata.AddArray(vtk_array(vtk, "material", a.material, np.int32))
+    pdata.AddArray(vtk_array(vtk, "cell_volume", a.cell_volume_m3 * MM ** 3, np.float64))
 
     counts = np.array([len(q) for q in a.facet_polygons], dtype=np.int64)
     start = np.concatenate([[0], np.cumsum(counts)])
     fverts = np.concatenate(a.facet_polygons) * MM if len(counts) else np.zeros((0, 3))
     facets = _polydata(vtk, fverts, [np.arange(start[k], start[k + 1]) for k in range(len(counts))])
     cdata = facets.GetCellData()
-    cdata.AddArray(_array(vtk, "kind", a.kind, np.int32))
-    cdata.AddArray(_array(vtk, "area", a.facet_area_m2 * MM ** 2, np.float64))
-    cdata.AddArray(_array(vtk, "gap", a.gap_m * MM, np.float64))
-    cdata.AddArray(_array(vtk, "contact", np.arange(a.n_contacts), np.int64))
+    cdata.AddArray(vtk_array(vtk, "kind", a.kind, np.int32))
+    cdata.AddArray(vtk_array(vtk, "area", a.facet_area_m2 * MM ** 2, np.float64))
+    cdata.AddArray(vtk_array(vtk, "gap", a.gap_m * MM, np.float64))
+    cdata.AddArray(vtk_array(vtk, "contact", np.arange(a.n_contacts), np.int64))
 
     pts, tris, agg_of, frac_of = [], [], [], []
     base = 0
@@ -88,8 +98,8 @@ def write_vtm(assembly, path):
         base += len(h.points)
     aggregates = _polydata(vtk, np.concatenate(pts) if pts else np.zeros((0, 3)), tris)
     adata = aggregates.GetCellData()
-    adata.AddArray(_array(vtk, "aggregate_id", np.concatenate(agg_of) if agg_of else np.zeros(0), np.int32))
-    adata.AddArray(_array(vtk, "fraction", np.concatenate(frac_of) if frac_of else np.zeros(0), np.int32))
+    adata.AddArray(vtk_array(vtk, "aggregate_id", np.concatenate(agg_of) if agg_of else np.zeros(0), np.int32))
+    adata.AddArray(vtk_array(vtk, "fraction", np.concatenate(frac_of) if frac_of else np.zeros(0), np.int32))
 
     mb = vtk.vtkMultiBlockDataSet()
     for k, (name, block) in enumerate((("spheres", spheres), ("facets", facets), ("aggregates", aggregates))):
