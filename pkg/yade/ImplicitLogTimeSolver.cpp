@@ -115,6 +115,7 @@ ImplicitLogTimeSolver::ImplicitLogTimeSolver()
 	minIterations  = 1;
 	colliderPeriod = 1;
 	iterationName  = "Newton";
+	runs3D         = false; // its tangent is that of discs
 	// Newton needs a residual that depends on the state reached, not on the iterations' path
 	shearFromStepStart = true;
 	progressDetail     = [this] {
@@ -785,7 +786,7 @@ void ImplicitLogTimeSolver::action()
 			relaxing  = true;
 			lineAlpha = 0;
 			zeroVelocities(scene);
-			relax.start(scene);
+			relax.start(scene, nDim);
 		}
 		relaxIteration(b);
 		return;
@@ -794,7 +795,7 @@ void ImplicitLogTimeSolver::action()
 		relaxing  = true;
 		lineAlpha = 0;
 		zeroVelocities(scene);
-		relax.start(scene);
+		relax.start(scene, nDim);
 		++relaxPhase;
 	}
 	if (relaxing) {
