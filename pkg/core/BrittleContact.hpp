@@ -2,7 +2,7 @@
 // Brittle contact strength (paper 2.4): tension cut-off Fn <= f_t A (tension positive), optional
 // Mohr-Coulomb shear strength |Fs| <= c A + tan(phi) max(-Fn, 0); once broken the contact is a
 // cohesionless Coulomb contact: Fn <= 0, |Fs| <= tan(phi_res) max(-Fn, 0).
-// Pure functions on scalars; forces in N, areas in m2, stresses in Pa, angles in rad.
+// Pure functions on scalars (a shear of two components enters as its magnitude); forces in N, areas in m2, stresses in Pa, angles in rad.
 #pragma once
 
 #include <algorithm>
@@ -65,6 +65,23 @@ public:
         Fn = std::min(FnHat, 0.0);
         const double cap = shearCapacityBroken(s, Fn);
         Fs = std::clamp(FsTrial, -cap, cap);
+    }
+    /// The same for a shear of two components (a 3D contact): a trial shear outside the Coulomb
+    /// cone returns to it radially (the slip is along the trial shear). With FsTrial2 = 0 it is
+    /// brokenForces above, to the bit.
+    static void brokenForces(const BrittleStrength& s, double FnHat, double FsTrial, double FsTrial2, double& Fn, double& Fs,
+                             double& Fs2)
+    {
+        if (FsTrial2 == 0) {
+            brokenForces(s, FnHat, FsTrial, Fn, Fs);
+            Fs2 = 0;
+            return;
+        }
+        Fn = std::min(FnHat, 0.0);
+        const double cap = shearCapacityBroken(s, Fn), m = std::hypot(FsTrial, FsTrial2);
+        const double scale = m > cap ? cap / m : 1.0;
+        Fs  = FsTrial * scale;
+        Fs2 = FsTrial2 * scale;
     }
 };
 

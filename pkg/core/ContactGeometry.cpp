@@ -9,6 +9,7 @@ void ContactGeometry::validate() const
 {
     requirePositive("area [m2]", area);
     requirePositive("length [m]", length);
+    if (shearComponents != 1 && shearComponents != 2) require(false, "shearComponents", shearComponents, "1 (2D) or 2 (3D)");
 }
 
 }  // namespace swelldem::core

@@ -22,12 +22,14 @@ ContactLaw::ContactLaw(const ContactKindParams& p, double shortestLag, double lo
     if (b3_ && p_.thermal.on) clocks_ = std::make_unique<ThermalCreepClocks>(p_.thermal, history);
 }
 
-std::size_t ContactLaw::hiddenStateSize() const { return creep_ ? 2 * creep_->size() : 0; }
+std::size_t ContactLaw::chainSize() const { return creep_ ? creep_->size() : 0; }
 
-void ContactLaw::initState(ContactState& s) const
+std::size_t ContactLaw::hiddenStateSize(int shearComponents) const { return (1 + std::size_t(shearComponents)) * chainSize(); }
+
+void ContactLaw::initState(ContactState& s, int shearComponents) const
 {
     s = ContactState{};
-    s.gamma.assign(hiddenStateSize(), 0.0);
+    s.gamma.assign(hiddenStateSize(shearComponents), 0.0);
 }
 
 void ContactLaw::beginStep(double tPrev, double t)
@@ -69,24 +71,29 @@ void ContactLaw::beginContactStep(const ContactGeometry& g, ContactState& s) con
     s.kn = stepModulus_ * A / L;
     s.ks = alpha * s.kn;
     s.duOffsetN = kinetics_ ? swellingDisplacementInf(g) * dxi_ : 0.0;
-    s.duOffsetS = 0;
+    s.duOffsetS = s.duOffsetS2 = 0;
+    const std::size_t hidden = hiddenStateSize(g.shearComponents);
     // A contact new to this law (created without one) starts with no creep history.
-    if (s.gamma.empty()) s.gamma.assign(hiddenStateSize(), 0.0);
+    if (s.gamma.empty()) s.gamma.assign(hidden, 0.0);
     if (creep_) {
-        require(s.gamma.size() == hiddenStateSize(), "hidden creep state size of a contact", static_cast<double>(s.gamma.size()),
-                std::to_string(hiddenStateSize()) + " (the kind's Kelvin chain changed while its contacts had a creep history)");
+        require(s.gamma.size() == hidden, "hidden creep state size of a contact", static_cast<double>(s.gamma.size()),
+                std::to_string(hidden) + " (the kind's Kelvin chain changed while its contacts had a creep history)");
+        const std::size_t n = chainSize();
         const double sigmaN = s.committed.Fn / A;
         const double sigmaS = s.committed.Fs / (alpha * A);
-        s.duOffsetN += L * SolidificationCreep::inelasticStrainIncrement(factors_, sigmaN, s.gammaNormal());
-        s.duOffsetS += L * SolidificationCreep::inelasticStrainIncrement(factors_, sigmaS, s.gammaShear());
+        s.duOffsetN += L * SolidificationCreep::inelasticStrainIncrement(factors_, sigmaN, s.gamma.data());
+        s.duOffsetS += L * SolidificationCreep::inelasticStrainIncrement(factors_, sigmaS, s.gamma.data() + n);
+        if (g.shearComponents == 2)
+            s.duOffsetS2 += L * SolidificationCreep::inelasticStrainIncrement(factors_, s.committed.Fs2 / (alpha * A), s.gamma.data() + 2 * n);
     }
     s.trial = s.committed;
-    s.shearStep = 0;
+    s.shearStep = s.shearStep2 = 0;
 }
 
-const ContactForces& ContactLaw::trial(const ContactGeometry& g, ContactState& s, double duN, double duS) const
+const ContactForces& ContactLaw::trial(const ContactGeometry& g, ContactState& s, double duN, double duS, double duS2) const
 {
-    return settle(g, s, s.committed.FnHat + s.kn * (duN - s.duOffsetN), s.committed.Fs + s.ks * (duS - s.duOffsetS), true);
+    return settle(g, s, s.committed.FnHat + s.kn * (duN - s.duOffsetN), s.committed.Fs + s.ks * (duS - s.duOffsetS),
+                  s.committed.Fs2 + s.ks * (duS2 - s.duOffsetS2), true);
 }
 
 ContactLaw::Mode ContactLaw::mode(const ContactState& s) const
@@ -94,7 +101,10 @@ ContactLaw::Mode ContactLaw::mode(const ContactState& s) const
     const ContactForces& tr = s.trial;
     if (!tr.broken) return Mode::Intact;
     if (!(tr.FnHat < 0)) return Mode::Open;
-    return std::abs(tr.Fs) < BrittleContact::shearCapacityBroken(p_.strength, tr.Fn) ? Mode::Sticking : Mode::Sliding;
+    const double cap = BrittleContact::shearCapacityBroken(p_.strength, tr.Fn);
+    if (tr.Fs2 == 0) return std::abs(tr.Fs) < cap ? Mode::Sticking : Mode::Sliding;
+    // A radial return lands on the cone to round-off, either side of it.
+    return tr.shearMagnitude() < cap * (1 - 1e-12) ? Mode::Sticking : Mode::Sliding;
 }
 
 void ContactLaw::commit(const ContactGeometry& g, ContactState& s) const
@@ -103,8 +113,12 @@ void ContactLaw::commit(const ContactGeometry& g, ContactState& s) const
         const double A = g.area, alpha = p_.shearRatio;
         const double sN = s.committed.Fn / A, dsN = (s.trial.Fn - s.committed.Fn) / A;
         const double sS = s.committed.Fs / (alpha * A), dsS = (s.trial.Fs - s.committed.Fs) / (alpha * A);
-        SolidificationCreep::commit(factors_, sN, dsN, s.gammaNormal());
-        SolidificationCreep::commit(factors_, sS, dsS, s.gammaShear());
+        const std::size_t n = chainSize();
+        SolidificationCreep::commit(factors_, sN, dsN, s.gamma.data());
+        SolidificationCreep::commit(factors_, sS, dsS, s.gamma.data() + n);
+        if (g.shearComponents == 2)
+            SolidificationCreep::commit(factors_, s.committed.Fs2 / (alpha * A), (s.trial.Fs2 - s.committed.Fs2) / (alpha * A),
+                                        s.gamma.data() + 2 * n);
     }
     s.committed = s.trial;
     s.openingRef = s.opening;

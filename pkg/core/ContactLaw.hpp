@@ -8,6 +8,8 @@
 // Convention: tension positive, opening displacement positive, kn = E A / L, ks = alpha kn;
 // creep works in sigma = Fn/A, eps = u/L (normal) and sigma_s = Fs/(alpha A), eps_s = u_s/L (shear).
 //   Fn = Fn_committed + kn'' (duN - du''_n - du_sw),  Fs = Fs_committed + ks'' (duS - du''_s).
+// Shear is that of each tangent of the contact (ContactGeometry::shearComponents: one in 2D, two in
+// 3D), creep acting on each component alike; strength and the Coulomb cone see its magnitude.
 // "A scene pays only for what it uses": Elastic and AgingElastic kinds allocate no Kelvin state,
 // non-swelling kinds never evaluate the sigmoid, damage off makes no strength check.
 // Temperature (the kind's temperatureDays/temperatures): the swelling kinetics follow it through
@@ -34,12 +36,14 @@ public:
     explicit ContactLaw(const ContactKindParams& p, double shortestLag = 1e-2, double longestLag = 1e5);
 
     const ContactKindParams& params() const { return p_; }
-    /// Doubles of hidden state per contact (2 x chain size for Viscoelastic, else 0).
-    std::size_t hiddenStateSize() const;
+    /// Doubles of hidden state per contact ((1 + shearComponents) x chain size for Viscoelastic, else 0).
+    std::size_t hiddenStateSize(int shearComponents = 1) const;
+    /// Kelvin units of the chain (0 unless Viscoelastic).
+    std::size_t chainSize() const;
     /// The creep model (nullptr unless Viscoelastic).
     const SolidificationCreep* creep() const { return creep_.get(); }
     /// Resets a contact's state (forces zero, intact) and sizes its hidden array.
-    void initState(ContactState& s) const;
+    void initState(ContactState& s, int shearComponents = 1) const;
 
     /// Per-kind step set-up; requires t >= tPrev, and tPrev > 0 for aging kinds [day].
     void beginStep(double tPrev, double t);
@@ -64,12 +68,18 @@ public:
     void beginContactStep(const ContactGeometry& g, ContactState& s) const;
     /// Trial forces for displacement increments since the step start [m]; strength checks;
     /// a break is kept for the rest of the step. Returns s.trial.
-    const ContactForces& trial(const ContactGeometry& g, ContactState& s, double duN, double duS) const;
+    const ContactForces& trial(const ContactGeometry& g, ContactState& s, double duN, double duS, double duS2 = 0) const;
     /// The path of a solver that carries the shear force itself (YADE's rotated incremental shear
     /// vector): normal opening u [m] (the step's increment is u - s.openingRef, kept in s.opening) and
     /// trial shear force FsTrial [N]. An intact contact breaks here only when breakNow (else see
     /// breakIfOverloaded). Returns s.trial.
     const ContactForces& update(const ContactGeometry& g, ContactState& s, double opening, double FsTrial,
+                                bool breakNow) const
+    {
+        return update(g, s, opening, FsTrial, 0.0, breakNow);
+    }
+    /// The same with the trial shear's two components (a 3D contact).
+    const ContactForces& update(const ContactGeometry& g, ContactState& s, double opening, double FsTrial, double FsTrial2,
                                 bool breakNow) const;
     /// The same, for a solver that gives the shear as a displacement increment dShear [m] of the
     /// iteration: the trial shear force is taken from the step's start, Fs = committed.Fs +
@@ -77,14 +87,20 @@ public:
     /// not by the path of the iterations (the return mapping of implicit codes); slip becomes
     /// permanent at commit.
     const ContactForces& updateFromStepStart(const ContactGeometry& g, ContactState& s, double opening, double dShear,
-                                             bool breakNow) const;
+                                             bool breakNow) const
+    {
+        return updateFromStepStart(g, s, opening, dShear, 0.0, breakNow);
+    }
+    /// The same with the iteration's shear along both tangents (a 3D contact).
+    const ContactForces& updateFromStepStart(const ContactGeometry& g, ContactState& s, double opening, double dShear,
+                                             double dShear2, bool breakNow) const;
     /// At equilibrium: breaks an intact contact of a damaging kind whose trial forces exceed its
     /// strength; returns whether it broke. Its forces follow at the next update.
     bool breakIfOverloaded(const ContactGeometry& g, ContactState& s) const;
     /// BrittleContact::overload of the trial forces of an intact contact (0 once broken) [-].
     double overload(const ContactGeometry& g, const ContactState& s) const
     {
-        return s.trial.broken ? 0.0 : BrittleContact::overload(p_.strength, g.area, s.trial.FnHat, s.trial.Fs);
+        return s.trial.broken ? 0.0 : BrittleContact::overload(p_.strength, g.area, s.trial.FnHat, s.trial.shearMagnitude());
     }
     /// The state that decides a contact's tangent stiffness in an implicit solver: kn'', ks'' while
     /// intact or sticking, kn'' alone while sliding (its shear force stays on the Coulomb cone),
@@ -96,7 +112,7 @@ public:
     void commit(const ContactGeometry& g, ContactState& s) const;
 
 private:
-    const ContactForces& settle(const ContactGeometry& g, ContactState& s, double FnHat, double FsTrial,
+    const ContactForces& settle(const ContactGeometry& g, ContactState& s, double FnHat, double FsTrial, double FsTrial2,
                                 bool breakNow) const;
     ContactKindParams p_;
     std::unique_ptr<SolidificationCreep> creep_;
@@ -113,16 +129,17 @@ private:
 
 // Inline: the YADE law calls these for every contact at every iteration.
 inline const ContactForces& ContactLaw::settle(const ContactGeometry& g, ContactState& s, double FnHat, double FsTrial,
-                                        bool breakNow) const
+                                               double FsTrial2, bool breakNow) const
 {
     ContactForces& tr = s.trial;
     tr.FnHat = FnHat;
     if (!tr.broken) {
-        tr.Fn = FnHat;
-        tr.Fs = FsTrial;
+        tr.Fn  = FnHat;
+        tr.Fs  = FsTrial;
+        tr.Fs2 = FsTrial2;
         if (!breakNow || !breakIfOverloaded(g, s)) return tr;
     }
-    BrittleContact::brokenForces(p_.strength, FnHat, FsTrial, tr.Fn, tr.Fs);
+    BrittleContact::brokenForces(p_.strength, FnHat, FsTrial, FsTrial2, tr.Fn, tr.Fs, tr.Fs2);
     return tr;
 }
 
@@ -130,7 +147,7 @@ inline bool ContactLaw::breakIfOverloaded(const ContactGeometry& g, ContactState
 {
     ContactForces& tr = s.trial;
     if (tr.broken) return false;
-    const FailureMode m = BrittleContact::check(p_.strength, g.area, tr.FnHat, tr.Fs);
+    const FailureMode m = BrittleContact::check(p_.strength, g.area, tr.FnHat, tr.shearMagnitude());
     if (m == FailureMode::None) return false;
     tr.broken = true;
     tr.mode = m;
@@ -138,19 +155,21 @@ inline bool ContactLaw::breakIfOverloaded(const ContactGeometry& g, ContactState
 }
 
 inline const ContactForces& ContactLaw::update(const ContactGeometry& g, ContactState& s, double opening, double FsTrial,
-                                        bool breakNow) const
+                                               double FsTrial2, bool breakNow) const
 {
     s.opening = opening;
-    return settle(g, s, s.committed.FnHat + s.kn * ((opening - s.openingRef) - s.duOffsetN), FsTrial, breakNow);
+    return settle(g, s, s.committed.FnHat + s.kn * ((opening - s.openingRef) - s.duOffsetN), FsTrial, FsTrial2, breakNow);
 }
 
 inline const ContactForces& ContactLaw::updateFromStepStart(const ContactGeometry& g, ContactState& s, double opening,
-                                                     double dShear, bool breakNow) const
+                                                            double dShear, double dShear2, bool breakNow) const
 {
     s.opening = opening;
     s.shearStep += dShear;
+    s.shearStep2 += dShear2;
     return settle(g, s, s.committed.FnHat + s.kn * ((opening - s.openingRef) - s.duOffsetN),
-                  s.committed.Fs + s.ks * (s.shearStep - s.duOffsetS), breakNow);
+                  s.committed.Fs + s.ks * (s.shearStep - s.duOffsetS), s.committed.Fs2 + s.ks * (s.shearStep2 - s.duOffsetS2),
+                  breakNow);
 }
 
 }  // namespace swelldem::core

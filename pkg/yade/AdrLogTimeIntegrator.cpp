@@ -16,7 +16,7 @@ void AdrLogTimeIntegrator::action()
 {
 	const bool starting = times.empty();
 	if (!startIteration()) {
-		if (starting && !times.empty()) relaxation.start(scene);
+		if (starting && !times.empty()) relaxation.start(scene, nDim);
 		return;
 	}
 	const TrackHeldBodiesAtExit track { this };

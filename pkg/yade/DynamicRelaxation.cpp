@@ -4,16 +4,15 @@
 
 namespace yade {
 
-void DynamicRelaxation::start(const Scene* scene)
+void DynamicRelaxation::start(const Scene* scene, int dim)
 {
+	nDim           = dim;
 	const size_t n = scene->bodies->body.size();
-	initialPos.assign(2 * n, 0.0);
+	initialPos.assign(nDim * n, 0.0);
 	for (const auto& b : scene->bodies->body)
-		if (b) {
-			initialPos[2 * b->id]     = b->state->se3.position[0];
-			initialPos[2 * b->id + 1] = b->state->se3.position[1];
-		}
-	prevForce.assign(3 * n, 0.0);
+		if (b)
+			for (int d = 0; d < nDim; ++d) initialPos[nDim * b->id + d] = b->state->se3.position[d];
+	prevForce.assign((nDim == 3 ? 6 : 3) * n, 0.0);
 	nContactsSeen = -1;
 }
 
@@ -22,6 +21,7 @@ void DynamicRelaxation::computeMasses(const Scene* scene, Real massSafety)
 	// Gershgorin row sums of the contact stiffness in 2D: a contact's relative displacement is
 	// B q with rows n = (-n, 0, n, 0) and t = (-t, -r1, t, -r2) over (u1, theta1, u2, theta2);
 	// |K| row a <= sum_k k_k |B_ka| sum_b |B_kb|.
+	if (nDim == 3) return computeMasses3d(scene, massSafety);
 	const size_t n = scene->bodies->body.size();
 	massX.assign(n, 0.0), massY.assign(n, 0.0), inertiaZ.assign(n, 0.0);
 	const auto& L = scene->interactions->linIntrs;
@@ -53,6 +53,53 @@ void DynamicRelaxation::computeMasses(const Scene* scene, Real massSafety)
 	nContactsSeen = nReal;
 }
 
+void DynamicRelaxation::computeMasses3d(const Scene* scene, Real massSafety)
+{
+	// The same bound in 3D: rows n = (-n, 0, n, 0) and, for each tangent t of the contact plane,
+	// (-t, -r1 (n x t), t, -r2 (n x t)) over (u1, theta1, u2, theta2); any orthonormal pair of
+	// tangents gives a bound, the axis least aligned with n makes the first.
+	const size_t n = scene->bodies->body.size();
+	massX.assign(n, 0.0), massY.assign(n, 0.0), massZ.assign(n, 0.0);
+	inertiaX.assign(n, 0.0), inertiaY.assign(n, 0.0), inertiaZ.assign(n, 0.0);
+	const auto& L = scene->interactions->linIntrs;
+	long        nReal = 0;
+	for (size_t i = 0; i < scene->interactions->currSize; ++i) {
+		const Interaction* I = L[i].get();
+		if (!I->isReal()) continue;
+		++nReal;
+		const auto*     g  = static_cast<const ScGeom*>(I->geom.get());
+		const auto*     p  = static_cast<const NormShearPhys*>(I->phys.get());
+		const Vector3r& nn = g->normal;
+		Eigen::Index    k  = 0;
+		nn.cwiseAbs().minCoeff(&k);
+		const Vector3r t1    = Vector3r::Unit(k).cross(nn).normalized();
+		const Vector3r tt[2] = { t1, nn.cross(t1) };
+		const Real     r1 = g->radius1 - 0.5 * g->penetrationDepth, r2 = g->radius2 - 0.5 * g->penetrationDepth;
+		const Real     kn = std::abs(p->kn), ks = std::abs(p->ks);
+		const Real     rowN = 2 * nn.cwiseAbs().sum();
+		Vector3r       m = kn * rowN * nn.cwiseAbs(), rot1 = Vector3r::Zero(), rot2 = Vector3r::Zero();
+		for (const Vector3r& tk : tt) {
+			const Vector3r lever = nn.cross(tk).cwiseAbs();
+			const Real     rowT  = 2 * tk.cwiseAbs().sum() + (r1 + r2) * lever.sum();
+			m += ks * rowT * tk.cwiseAbs();
+			rot1 += ks * rowT * r1 * lever;
+			rot2 += ks * rowT * r2 * lever;
+		}
+		for (int side = 0; side < 2; ++side) {
+			const int       id  = side == 0 ? I->id1 : I->id2;
+			const Vector3r& rot = side == 0 ? rot1 : rot2;
+			massX[id] += m[0], massY[id] += m[1], massZ[id] += m[2];
+			inertiaX[id] += rot[0], inertiaY[id] += rot[1], inertiaZ[id] += rot[2];
+		}
+	}
+	const Real f = 0.25 * scene->dt * scene->dt * massSafety;
+	for (size_t i = 0; i < n; ++i) {
+		massX[i] *= f, massY[i] *= f, massZ[i] *= f;
+		inertiaX[i] *= f, inertiaY[i] *= f, inertiaZ[i] *= f;
+	}
+	nContactsSeen = nReal;
+}
+
 Real DynamicRelaxation::damping(Scene* scene, Real maxDamping) const
 {
 	// Damping from the Rayleigh quotient of the local diagonal stiffness estimate (Underwood).
@@ -60,6 +107,27 @@ Real DynamicRelaxation::damping(Scene* scene, Real maxDamping) const
 	const long  nBodies = long(bodies.size());
 	const Real dt = scene->dt;
 	Real       num_ = 0, den = 0;
+	if (nDim == 3) {
+#pragma omp parallel for schedule(static) reduction(+ : num_, den) if (nBodies > LogTimeSolver::kParallelBodies)
+		for (long k = 0; k < nBodies; ++k) {
+			const Body* b = bodies[k].get();
+			if (!b) continue;
+			const State*    s  = b->state.get();
+			const int       id = b->id;
+			const Vector3r& f  = scene->forces.getForce(id);
+			const Real      m[3] = { massX[id], massY[id], massZ[id] };
+			for (int d = 0; d < 3; ++d) {
+				const Real v = s->vel[d];
+				if (v == 0 || m[d] == 0) continue;
+				const Real x      = s->se3.position[d] - initialPos[3 * id + d];
+				const Real kLocal = -(f[d] - prevForce[6 * id + d]) / (dt * v);
+				num_ += x * kLocal * x;
+				den += x * m[d] * x;
+			}
+		}
+		const Real c = (num_ > 0 && den > 0) ? 2 * std::sqrt(num_ / den) : 0;
+		return std::min(c, maxDamping / dt);
+	}
 #pragma omp parallel for schedule(static) reduction(+ : num_, den) if (nBodies > LogTimeSolver::kParallelBodies)
 	for (long k = 0; k < nBodies; ++k) {
 		const Body* b = bodies[k].get();
@@ -86,6 +154,37 @@ void DynamicRelaxation::leapfrog(Scene* scene, Real c)
 	const auto& bodies  = scene->bodies->body;
 	const long  nBodies = long(bodies.size());
 	const Real  dt      = scene->dt;
+	if (nDim == 3) {
+#pragma omp parallel for schedule(static) if (nBodies > LogTimeSolver::kParallelBodies)
+		for (long k = 0; k < nBodies; ++k) {
+			const Body* b = bodies[k].get();
+			if (!b) continue;
+			State*          s  = b->state.get();
+			const int       id = b->id;
+			const Vector3r& f  = scene->forces.getForce(id);
+			const Vector3r& t  = scene->forces.getTorque(id);
+			for (int d = 0; d < 3; ++d) prevForce[6 * id + d] = f[d], prevForce[6 * id + 3 + d] = t[d];
+			const Real m[3] = { massX[id], massY[id], massZ[id] }, J[3] = { inertiaX[id], inertiaY[id], inertiaZ[id] };
+			for (int d = 0; d < 3; ++d) {
+				if ((s->blockedDOFs & LogTimeSolver::kAxisDOF[d]) || m[d] == 0) {
+					s->vel[d] = 0;
+					continue;
+				}
+				s->vel[d] = ((2 - c * dt) * s->vel[d] + 2 * dt * f[d] / m[d]) / (2 + c * dt);
+				s->se3.position[d] += dt * s->vel[d];
+			}
+			for (int d = 0; d < 3; ++d)
+				s->angVel[d] = (s->blockedDOFs & LogTimeSolver::kRotDOF[d]) || J[d] <= 0
+				        ? 0
+				        : ((2 - c * dt) * s->angVel[d] + 2 * dt * t[d] / J[d]) / (2 + c * dt);
+			const Real turn = dt * s->angVel.norm();
+			if (turn > 0) {
+				s->se3.orientation = Quaternionr(Eigen::AngleAxis<Real>(turn, s->angVel.normalized())) * s->se3.orientation;
+				s->se3.orientation.normalize();
+			}
+		}
+		return;
+	}
 #pragma omp parallel for schedule(static) if (nBodies > LogTimeSolver::kParallelBodies)
 	for (long k = 0; k < nBodies; ++k) {
 		const Body* b = bodies[k].get();

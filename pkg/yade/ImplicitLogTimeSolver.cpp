@@ -122,6 +122,7 @@ ImplicitLogTimeSolver::ImplicitLogTimeSolver()
 	minIterations  = 1;
 	colliderPeriod = 1;
 	iterationName  = "Newton";
+	runs3D         = false; // its tangent is that of discs
 	// Newton needs a residual that depends on the state reached, not on the iterations' path
 	shearFromStepStart = true;
 	progressDetail     = [this] {
@@ -970,7 +971,7 @@ void ImplicitLogTimeSolver::action()
 			relaxing  = true;
 			lineAlpha = 0;
 			zeroVelocities(scene);
-			relax.start(scene);
+			relax.start(scene, nDim);
 		}
 		relaxIteration(b);
 		return;
@@ -979,7 +980,7 @@ void ImplicitLogTimeSolver::action()
 		relaxing  = true;
 		lineAlpha = 0;
 		zeroVelocities(scene);
-		relax.start(scene);
+		relax.start(scene, nDim);
 		++relaxPhase;
 	}
 	if (relaxing) {

@@ -49,6 +49,17 @@ void Ip2_ConcreteMat_ConcreteMat_SwellPhys::go(const shared_ptr<Material>& m1, c
 	if (geom) {
 		p->length = geom->refR1 + geom->refR2 - geom->penetrationDepth;
 		p->area   = 2 * std::min(geom->refR1, geom->refR2) * thickness;
+		constexpr unsigned planar = State::DOF_Z | State::DOF_RX | State::DOF_RY;
+		auto inPlane = [&](Body::id_t id) {
+			const auto& b = scene->bodies->body[id];
+			return b && (b->state->blockedDOFs & planar) == planar;
+		};
+		if (!inPlane(I->id1) || !inPlane(I->id2)) {
+			p->dim = 3;
+			Eigen::Index k = 2;
+			geom->normal.cwiseAbs().minCoeff(&k);
+			p->frameAxis = int(k);
+		}
 	}
 	// An Ip2 may not throw (YADE calls it inside its parallel loops), nor leave a contact without
 	// physics (Debian's YADE aborts on its assertion I->phys): a contact it cannot make gets physics

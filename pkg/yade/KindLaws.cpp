@@ -68,13 +68,13 @@ void KindLaws::beginStep(const std::vector<const ContactKind*>& kinds, Real shor
 			e->revision = e->kind->revision();
 			continue;
 		}
-		const size_t hidden = law ? law->hiddenStateSize() : 0;
+		const size_t hidden = law ? law->chainSize() : 0;
 		build(*e, *e->kind, p);
-		const size_t now = e->law.load(std::memory_order_relaxed)->hiddenStateSize();
+		const size_t now = e->law.load(std::memory_order_relaxed)->chainSize();
 		if (law && window.serial > 1 && now != hidden)
 			throw std::invalid_argument("swelldem: ContactKind '" + e->kind->name + "': this change gives its Kelvin chain "
-			                            + std::to_string(now / 2) + " units instead of "
-			                            + std::to_string(hidden / 2)
+			                            + std::to_string(now) + " units instead of "
+			                            + std::to_string(hidden)
 			                            + " while its contacts have a creep history; allowed during a run: changes that keep the chain "
 			                              "(behaviour, kelvinUnitsPerDecade and the lags as they were)");
 	}

@@ -8,6 +8,13 @@ namespace core = swelldem::core;
 namespace {
 	// The 2D tangent: the scene lies in the plane z = 0.
 	Vector3r tangentOf(const Vector3r& n) { return Vector3r(-n[1], n[0], 0); }
+	// A 3D contact's tangents (SwellPhys.frameAxis): ek x n, normalised, then n x t1; for k = z this
+	// first tangent is the 2D one.
+	std::pair<Vector3r, Vector3r> tangentsOf(const Vector3r& n, int axis)
+	{
+		const Vector3r t1 = Vector3r::Unit(axis).cross(n).normalized();
+		return { t1, n.cross(t1) };
+	}
 }
 
 void Law2_ScGeom_SwellPhys_AgingSwelling::beginContactStep(SwellPhys& p, const Vector3r& normal)
@@ -17,7 +24,11 @@ void Law2_ScGeom_SwellPhys_AgingSwelling::beginContactStep(SwellPhys& p, const V
 	p.kn = s.kn; // YADE's own members, for YADE's tools (time steppers, exporters)
 	p.ks = s.ks;
 	// The step's constant shear offset enters the incremental shear vector once.
-	p.shearForce += s.ks * s.duOffsetS * tangentOf(normal);
+	if (p.dim == 3) {
+		const auto [t1, t2] = tangentsOf(normal, p.frameAxis);
+		p.shearForce += s.ks * (s.duOffsetS * t1 + s.duOffsetS2 * t2);
+	} else
+		p.shearForce += s.ks * s.duOffsetS * tangentOf(normal);
 	p.stepSerial = window.serial;
 }
 
@@ -77,13 +88,27 @@ bool Law2_ScGeom_SwellPhys_AgingSwelling::go(shared_ptr<IGeom>& ig, shared_ptr<I
 		}
 		core::ContactState& s = p->state;
 		const bool          wasBroken = s.trial.broken;
-		const Vector3r      t         = tangentOf(geom->normal);
 		Vector3r            sh;
 		const core::ContactForces* f;
-		if (shearFromStepStart) {
+		if (p->dim == 3) {
+			// The shear's components on the contact's two tangents, with the same two paths as in 2D.
+			const auto [t1, t2] = tangentsOf(geom->normal, p->frameAxis);
+			if (shearFromStepStart) {
+				const Vector3r du = geom->shearIncrement();
+				f = &lawFor(kind).updateFromStepStart(p->geometry(), s, -geom->penetrationDepth, du.dot(t1), du.dot(t2), !breaksAtEquilibrium);
+			} else {
+				sh = p->shearForce;
+				geom->rotate(sh);
+				sh -= s.ks * geom->shearIncrement();
+				f = &lawFor(kind).update(p->geometry(), s, -geom->penetrationDepth, -sh.dot(t1), -sh.dot(t2), !breaksAtEquilibrium);
+			}
+			sh = -(f->Fs * t1 + f->Fs2 * t2);
+		} else if (shearFromStepStart) {
+			const Vector3r t = tangentOf(geom->normal);
 			f  = &lawFor(kind).updateFromStepStart(p->geometry(), s, -geom->penetrationDepth, geom->shearIncrement().dot(t), !breaksAtEquilibrium);
 			sh = -f->Fs * t;
 		} else {
+			const Vector3r t = tangentOf(geom->normal);
 			// Shear: YADE's incremental vector, carried into the current contact plane.
 			sh = p->shearForce;
 			geom->rotate(sh);

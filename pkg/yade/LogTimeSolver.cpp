@@ -73,18 +73,20 @@ void LogTimeSolver::fail(const string& why) const
 void LogTimeSolver::trackHeldBodies()
 {
 	const auto& bodies = scene->bodies->body;
-	if (heldPos.size() != 2 * bodies.size()) {
-		heldPos.assign(2 * bodies.size(), 0.0);
+	const int   nd     = nDim;
+	if (heldPos.size() != size_t(nd) * bodies.size()) {
+		heldPos.assign(size_t(nd) * bodies.size(), 0.0);
 		for (const auto& b : bodies)
-			if (b) heldPos[2 * b->id] = b->state->se3.position[0], heldPos[2 * b->id + 1] = b->state->se3.position[1];
+			if (b)
+				for (int d = 0; d < nd; ++d) heldPos[nd * b->id + d] = b->state->se3.position[d];
 		return;
 	}
 	for (const auto& b : bodies) {
 		if (!b) continue;
 		State* s = b->state.get();
-		for (int d = 0; d < 2; ++d) {
-			Real& was = heldPos[2 * b->id + d];
-			if (s->blockedDOFs & (d == 0 ? State::DOF_X : State::DOF_Y)) s->vel[d] = (s->se3.position[d] - was) / scene->dt;
+		for (int d = 0; d < nd; ++d) {
+			Real& was = heldPos[nd * b->id + d];
+			if (s->blockedDOFs & kAxisDOF[d]) s->vel[d] = (s->se3.position[d] - was) / scene->dt;
 			was = s->se3.position[d];
 		}
 	}
@@ -153,11 +155,27 @@ void LogTimeSolver::controlCollider()
 void LogTimeSolver::initialize()
 {
 	postLoad();
-	for (const auto& b : scene->bodies->body)
-		if (b && (b->state->blockedDOFs & kNeed2D) != kNeed2D)
-			throw std::invalid_argument("swelldem: " + getClassName() + " is a 2D solver: body " + std::to_string(b->id)
-			                            + " must have z translation and x, y rotations blocked (State.blockedDOFs containing 'zXY'); "
-			                              "3D sphere packings are not supported");
+	// 2D: every body in the plane (z, x and y rotations blocked); 3D: no free body so held. A body
+	// held in every direction belongs to either.
+	long planar = -1, spatial = -1;
+	for (const auto& b : scene->bodies->body) {
+		if (!b) continue;
+		const unsigned blocked = b->state->blockedDOFs;
+		if ((blocked & kAllDOF) == kAllDOF) continue;
+		if ((blocked & kNeed2D) == kNeed2D) {
+			if (planar < 0) planar = b->id;
+		} else if (spatial < 0)
+			spatial = b->id;
+	}
+	if (planar >= 0 && spatial >= 0)
+		throw std::invalid_argument("swelldem: " + getClassName() + " cannot start: body " + std::to_string(planar)
+		                            + " is a disc of a 2D section (State.blockedDOFs containing 'zXY') and body " + std::to_string(spatial)
+		                            + " a sphere free out of the plane; allowed: all discs (2D) or all spheres (3D)");
+	nDim = spatial >= 0 ? 3 : 2;
+	if (nDim == 3 && !runs3D)
+		throw std::invalid_argument("swelldem: " + getClassName() + " cannot start: body " + std::to_string(spatial)
+		                            + " is a sphere free out of the plane (a 3D scene); allowed: a 2D section (State.blockedDOFs "
+		                              "containing 'zXY'); AdrLogTimeIntegrator runs 3D scenes");
 	requireContactKinds(scene, getClassName());
 	findLaw();
 	times = core::logTimes(tStart, tEnd, stepsPerDecade, std::vector<double>(extraTimes.begin(), extraTimes.end()));
@@ -249,13 +267,15 @@ void LogTimeSolver::measureExternalScale(long nFree)
 		contact[I->id1] += f;
 		contact[I->id2] -= f;
 	}
-	Real sum = 0;
+	Real           sum   = 0;
+	const unsigned moves = nDim == 3 ? State::DOF_X | State::DOF_Y | State::DOF_Z : State::DOF_X | State::DOF_Y;
 	for (const auto& b : bodies) {
 		if (!b || b->isClump()) continue;
 		const State* s = b->state.get();
-		if ((s->blockedDOFs & (State::DOF_X | State::DOF_Y)) == (State::DOF_X | State::DOF_Y)) continue;
-		const Vector3r e = scene->forces.getForce(b->id) - contact[b->id];
-		sum += std::sqrt(((s->blockedDOFs & State::DOF_X) ? 0 : e[0] * e[0]) + ((s->blockedDOFs & State::DOF_Y) ? 0 : e[1] * e[1]));
+		if ((s->blockedDOFs & moves) == moves) continue;
+		const Vector3r e  = scene->forces.getForce(b->id) - contact[b->id];
+		const Real     e2 = ((s->blockedDOFs & State::DOF_X) ? 0 : e[0] * e[0]) + ((s->blockedDOFs & State::DOF_Y) ? 0 : e[1] * e[1]);
+		sum += std::sqrt(nDim == 3 && !(s->blockedDOFs & State::DOF_Z) ? e2 + e[2] * e[2] : e2);
 	}
 	externalScale = nFree > 0 ? sum / nFree : 0;
 }
@@ -265,28 +285,37 @@ LogTimeSolver::Balance LogTimeSolver::measureBalance()
 	// Unbalanced-force ratio, as YADE's unbalancedForce(): mean resultant on free bodies / mean contact force.
 	const auto& bodies  = scene->bodies->body;
 	const long  nBodies = long(bodies.size());
-	Real        sumRes = 0, sumContact = 0, sumKn = 0, posScale = 0;
-	long        nFree = 0, nReal = 0, badBody = -1;
+	Real           sumRes = 0, sumContact = 0, sumKn = 0, posScale = 0;
+	long           nFree = 0, nReal = 0, badBody = -1;
+	const bool     threeD = nDim == 3;
+	const unsigned moves  = threeD ? State::DOF_X | State::DOF_Y | State::DOF_Z : State::DOF_X | State::DOF_Y;
 #pragma omp parallel for schedule(static) reduction(+ : sumRes, nFree) reduction(max : posScale) if (nBodies > kParallelBodies)
 	for (long k = 0; k < nBodies; ++k) {
 		const Body* b = bodies[k].get();
 		if (!b || b->isClump()) continue;
 		const State* s = b->state.get();
-		if ((s->blockedDOFs & (State::DOF_X | State::DOF_Y)) == (State::DOF_X | State::DOF_Y)) continue;
+		if ((s->blockedDOFs & moves) == moves) continue;
 		const Vector3r& f = scene->forces.getForce(b->id);
-		if (!std::isfinite(f[0]) || !std::isfinite(f[1])) {
+		if (!std::isfinite(f[0]) || !std::isfinite(f[1]) || (threeD && !std::isfinite(f[2]))) {
 #pragma omp critical(swelldemBadBody)
 			if (badBody < 0 || b->id < badBody) badBody = b->id;
 			continue;
 		}
 		Real fx = (s->blockedDOFs & State::DOF_X) ? 0 : f[0], fy = (s->blockedDOFs & State::DOF_Y) ? 0 : f[1];
-		sumRes += std::sqrt(fx * fx + fy * fy);
-		posScale = std::max(posScale, s->se3.position.head<2>().cwiseAbs().maxCoeff());
+		if (threeD) {
+			const Real fz = (s->blockedDOFs & State::DOF_Z) ? 0 : f[2];
+			sumRes += std::sqrt(fx * fx + fy * fy + fz * fz);
+			posScale = std::max(posScale, s->se3.position.cwiseAbs().maxCoeff());
+		} else {
+			sumRes += std::sqrt(fx * fx + fy * fy);
+			posScale = std::max(posScale, s->se3.position.head<2>().cwiseAbs().maxCoeff());
+		}
 		++nFree;
 	}
 	if (badBody >= 0) {
 		const Vector3r& f = scene->forces.getForce(int(badBody));
-		fail("non-finite force on body " + std::to_string(badBody) + " (" + num(f[0]) + ", " + num(f[1]) + ") N");
+		fail("non-finite force on body " + std::to_string(badBody) + " (" + num(f[0]) + ", " + num(f[1]) + (threeD ? ", " + num(f[2]) : string())
+		     + ") N");
 	}
 	const auto& L     = scene->interactions->linIntrs;
 	const long  nIntr = long(scene->interactions->currSize);
@@ -301,7 +330,8 @@ LogTimeSolver::Balance LogTimeSolver::measureBalance()
 		// A contact that the step loads through its own offset (swelling, creep) counts at least
 		// with that load: free swelling ends with zero contact forces, not with a zero ratio.
 		if (const auto* sp = dynamic_cast<const SwellPhys*>(p))
-			F = std::max(F, std::abs(sp->state.kn * sp->state.duOffsetN) + std::abs(sp->state.ks * sp->state.duOffsetS));
+			F = std::max(F, std::abs(sp->state.kn * sp->state.duOffsetN) + std::abs(sp->state.ks * sp->state.duOffsetS)
+			                    + std::abs(sp->state.ks * sp->state.duOffsetS2));
 		sumContact += F;
 	}
 	if (!std::isfinite(sumContact)) fail("a contact force is not finite");

@@ -68,7 +68,9 @@ public:
 	X(Real, forceScaleMax, 0.0, swelldem_attr::Internal, "Largest mean contact force of the run so far [N]")                                          \
 	X(Real, externalScale, 0.0, swelldem_attr::Internal, "Mean external load on the free bodies, measured at the step's first iteration [N]")        \
 	X(long, nRealSeen, -1, swelldem_attr::Internal, "Real contacts at the last iteration [-]")                                                        \
-	X(std::vector<Real>, heldPos, std::vector<Real>(), swelldem_attr::Internal, "Positions (x, y) of the bodies at the end of the last action [m]")  \
+	X(int, nDim, 2, swelldem_attr::Result,                                                                                                                \
+	  "Dimension of the scene, from its bodies at the start: 2 (discs: z translation and x, y rotations blocked) or 3 (spheres) [-]")            \
+	X(std::vector<Real>, heldPos, std::vector<Real>(), swelldem_attr::Internal, "Positions (x, y; z in 3D) of the bodies at the end of the last action [m]")  \
 	X(std::vector<Real>, springAnchors, std::vector<Real>(), swelldem_attr::Internal, "Position of each spring's body at the run's start [m]")      \
 	X(Real, wallBefore, 0.0, swelldem_attr::Internal, "Wall time of the run before this session (O.load) [s]")
 	SWELLDEM_CLASS(LogTimeSolver, GlobalEngine,
@@ -88,6 +90,9 @@ public:
 	}
 	int                   nSteps() const { return times.empty() ? 0 : int(times.size()) - 1; }
 	static const long     kParallelBodies = 4000; // below this many discs a loop is cheaper than waking OpenMP's threads
+	/// The blocked-DOF bit of each translation and rotation axis.
+	static constexpr unsigned kAxisDOF[3] = { State::DOF_X, State::DOF_Y, State::DOF_Z };
+	static constexpr unsigned kRotDOF[3]  = { State::DOF_RX, State::DOF_RY, State::DOF_RZ };
 	boost::python::object getStepHook() const;
 	void                  setStepHook(const boost::python::object& hook);
 
@@ -126,10 +131,12 @@ protected:
 	double            wallNow() const; // [s] of the run, sessions before an O.load included
 	static void       zeroVelocities(Scene* scene);
 	static const unsigned kNeed2D = State::DOF_Z | State::DOF_RX | State::DOF_RY;
+	static constexpr unsigned kAllDOF = State::DOF_X | State::DOF_Y | State::DOF_Z | State::DOF_RX | State::DOF_RY | State::DOF_RZ;
 	std::vector<const ContactKind*>      kinds;                      // the kinds of the scene's contacts, refreshed when contacts come or go
 	Law2_ScGeom_SwellPhys_AgingSwelling* law2               = nullptr; // the scene's law functor (owns the run's laws), found at the start and after O.load
 	const char*                          iterationName      = "ADR";   // what one iteration is, for the progress lines
 	bool                                 shearFromStepStart = false;   // the law functor's mode this solver sets
+	bool                                 runs3D             = true;    // whether this solver takes a 3D scene (nDim 3)
 	/// What a solver adds to the progress line about its own iterations (not virtual: the vtable
 	/// must keep the size of the stock engine's, compat/abi_pairs.txt).
 	std::function<std::string()> progressDetail;

@@ -10,6 +10,8 @@ void SwellPhys::postLoad()
 	if (area != 0) swelldem::core::requirePositive("SwellPhys.area [m2]", area);
 	if (length != 0) swelldem::core::requirePositive("SwellPhys.length [m]", length);
 	if (!(swellDispInf < 0)) swelldem::core::requireNonNegative("SwellPhys.swellDispInf [m]", swellDispInf);
+	swelldem::core::require(dim == 2 || dim == 3, "SwellPhys.dim", dim, "2 or 3");
+	swelldem::core::require(frameAxis >= 0 && frameAxis <= 2, "SwellPhys.frameAxis", frameAxis, "0, 1 or 2");
 }
 
 void SwellPhys::checkObject(const char*, const shared_ptr<ContactKind>& value) const

@@ -14,6 +14,7 @@ template <class Archive> void serialize(Archive& ar, swelldem::core::ContactForc
 	int mode = int(f.mode);
 	ar& make_nvp("Fn", f.Fn);
 	ar& make_nvp("Fs", f.Fs);
+	ar& make_nvp("Fs2", f.Fs2);
 	ar& make_nvp("FnHat", f.FnHat);
 	ar& make_nvp("broken", f.broken);
 	ar& make_nvp("mode", mode);
@@ -28,9 +29,11 @@ template <class Archive> void serialize(Archive& ar, swelldem::core::ContactStat
 	ar& make_nvp("ks", s.ks);
 	ar& make_nvp("duOffsetN", s.duOffsetN);
 	ar& make_nvp("duOffsetS", s.duOffsetS);
+	ar& make_nvp("duOffsetS2", s.duOffsetS2);
 	ar& make_nvp("openingRef", s.openingRef);
 	ar& make_nvp("opening", s.opening);
 	ar& make_nvp("shearStep", s.shearStep);
+	ar& make_nvp("shearStep2", s.shearStep2);
 }
 } // namespace boost::serialization
 BOOST_CLASS_IMPLEMENTATION(swelldem::core::ContactForces, boost::serialization::object_serializable)
@@ -49,6 +52,12 @@ public:
 	X(Real, length, 0.0, swelldem_attr::Setting, "Centre distance L of the stress-free configuration; kn = E A / L [m]")                                 \
 	X(Real, swellDispInf, -1.0, swelldem_attr::Setting,                                                                                                  \
 	  "Per-contact ultimate swelling displacement d_inf; < 0: the kind's ContactKind.swellDispInf [m]")                                                  \
+	X(int, dim, 2, swelldem_attr::Result,                                                                                                                 \
+	  "2: a contact of a 2D section (both bodies with z translation and x, y rotations blocked), one shear component along "             \
+	  "ez x normal; 3: a 3D contact, shear along two tangents of its facet (set when the contact is made) [-]")                                \
+	X(int, frameAxis, 2, swelldem_attr::Internal,                                                                                                        \
+	  "A 3D contact's first tangent is ek x normal, normalised, for this axis k, the one most nearly in the facet when the contact was "     \
+	  "made: the tangents then turn with the normal, away from their singularity, and the shear components keep their meaning [-]")         \
 	X(long, stepSerial, -1, swelldem_attr::Result, "Physical step (Law2_ScGeom_SwellPhys_AgingSwelling.stepSerial) the contact's step data belong to [-]")                      \
 	X(swelldem::core::ContactState, state, swelldem::core::ContactState(), swelldem_attr::Internal, "The contact's state (physics core) [-]")
 	SWELLDEM_CLASS(SwellPhys, FrictPhys,
@@ -68,16 +77,21 @@ public:
 		cls.add_property("swellingDispInf", &SwellPhys::effectiveSwellDispInf, "Ultimate swelling displacement in force (own or the kind's) [m]");
 		cls.add_property("fnMax", &SwellPhys::fnMax, "Tensile strength of the contact f_t A (inf when damage is off) [N]");
 		cls.add_property("Fn", +[](const SwellPhys& p) { return p.state.trial.Fn; }, "(result) Transmitted normal force, tension positive [N]");
-		cls.add_property("Fs", +[](const SwellPhys& p) { return p.state.trial.Fs; }, "(result) Transmitted shear force along the 2D tangent ez x normal [N]");
+		cls.add_property("Fs", +[](const SwellPhys& p) { return p.state.trial.Fs; },
+		                 "(result) Transmitted shear force along the first tangent (2D: ez x normal; 3D: see frameAxis) [N]");
+		cls.add_property("Fs2", +[](const SwellPhys& p) { return p.state.trial.Fs2; },
+		                 "(result) Transmitted shear force along the second tangent, normal x first (3D; 0 in 2D) [N]");
 		cls.add_property("FnHat", +[](const SwellPhys& p) { return p.state.trial.FnHat; },
 		                 "(result) Unclamped normal force; > 0 on a broken contact measures how far its crack is open [N]");
 		cls.add_property("broken", +[](const SwellPhys& p) { return p.state.trial.broken; }, "(result) Broken (committed or during this step) [-]");
 		cls.add_property("failureMode", +[](const SwellPhys& p) { return int(p.state.trial.mode); }, "(result) How it broke: 0 intact, 1 tension, 2 shear [-]");
 		cls.add_property("committedFn", +[](const SwellPhys& p) { return p.state.committed.Fn; }, "(result) Normal force at the end of the last converged step [N]");
 		cls.add_property("committedFs", +[](const SwellPhys& p) { return p.state.committed.Fs; }, "(result) Shear force at the end of the last converged step [N]");
+		cls.add_property("committedFs2", +[](const SwellPhys& p) { return p.state.committed.Fs2; },
+		                 "(result) Shear force along the second tangent at the end of the last converged step (3D) [N]");
 		cls.add_property("committedBroken", +[](const SwellPhys& p) { return p.state.committed.broken; }, "(result) Broken at the end of the last converged step [-]");
 		cls.add_property("gamma", +[](const SwellPhys& p) { return std::vector<Real>(p.state.gamma.begin(), p.state.gamma.end()); },
-		                 "(result) Hidden Kelvin-chain strains, normal units then shear units (empty unless viscoelastic) [-]");
+		                 "(result) Hidden Kelvin-chain strains, normal units then those of each shear component (empty unless viscoelastic) [-]");
 		cls.add_property("uRef", +[](const SwellPhys& p) { return p.state.openingRef; }, +[](SwellPhys& p, Real v) { p.state.openingRef = v; },
 		                 "Normal opening (-penetrationDepth) at which the committed force was reached: the stress-free opening at "
 		                 "creation (set it before the first step to choose another), then the converged opening of each step [m]");
@@ -86,6 +100,8 @@ public:
 		                 "set-up, writable for experiments [m]");
 		cls.add_property("duOffsetS", +[](const SwellPhys& p) { return p.state.duOffsetS; }, +[](SwellPhys& p, Real v) { p.state.duOffsetS = v; },
 		                 "Step data: inelastic shear displacement increment of the current step; writable for experiments [m]");
+		cls.add_property("duOffsetS2", +[](const SwellPhys& p) { return p.state.duOffsetS2; }, +[](SwellPhys& p, Real v) { p.state.duOffsetS2 = v; },
+		                 "Step data: the same along the second tangent (3D); writable for experiments [m]");
 		// kn, ks: the step stiffnesses live in the state; YADE's own kn, ks members mirror them for YADE's tools.
 		cls.add_property("kn", +[](const SwellPhys& p) { return p.state.kn; }, +[](SwellPhys& p, Real v) { p.state.kn = p.NormPhys::kn = v; },
 		                 "Step data: incremental normal stiffness kn'' of the current step; writable for experiments [N/m]");
@@ -102,6 +118,7 @@ public:
 		g.area                    = area;
 		g.length                  = length;
 		g.swellingDisplacementInf = swellDispInf;
+		g.shearComponents         = dim == 3 ? 2 : 1;
 		return g;
 	}
 	SWELLDEM_CLASS_INDEX(SwellPhys, FrictPhys)

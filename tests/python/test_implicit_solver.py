@@ -234,7 +234,8 @@ try:
 except Exception as e:
     dump({"err": str(e)})
 """, threads=1)
-    assert res["err"] and "2D solver" in res["err"] and "3D sphere packings are not supported" in res["err"]
+    assert res["err"] and "ImplicitLogTimeSolver cannot start: body 0 is a sphere free out of the plane (a 3D scene)" in res["err"]
+    assert "AdrLogTimeIntegrator runs 3D scenes" in res["err"]
 
 
 # A cracking specimen (ISR, elastic, damage on, paper-micro values, 10 steps a decade, seed 1) under

@@ -153,12 +153,6 @@ def test_order_hilbert_is_refused_in_3d():
         meso.generate(seed=1, order="hilbert", **dict(BOX, aggregate_area_fraction=0))
 
 
-def test_the_2d_scene_builder_refuses_a_3d_assembly(box):
-    from swelldem.dem.meso_scene import to_yade
-    with pytest.raises(ValueError, match="assembly dim = 3 is out of range; allowed: 2"):
-        to_yade(box, kinds=None, solver=None)
-
-
 # ---------------------------------------------------------------------------- pictures, files
 
 def test_sections_of_a_cube_and_an_octahedron_are_their_closed_forms():

@@ -93,7 +93,8 @@ def _check_kinds(assembly, kinds):
 
 def to_yade(assembly, kinds, solver, reset=True, density=2400.0, young=30e9, poisson=0.2,
             detection_factor=1.0, fixed=None, check_geometry=True):
-    """Fill ``yade.Omega()`` with the assembly and return a :class:`YadeScene`.
+    """Fill ``yade.Omega()`` with the assembly (discs of a 2D section, or spheres free in every
+    direction for a 3D assembly) and return a :class:`YadeScene`.
 
     Args:
         assembly: a :class:`swelldem.meso.Assembly` (SI metres).
@@ -117,13 +118,12 @@ def to_yade(assembly, kinds, solver, reset=True, density=2400.0, young=30e9, poi
         assembly's kind.
     """
     t0 = time.time()
-    if getattr(assembly, "dim", 2) != 2:
-        # The contact law and both solvers hold one rotation and a unit thickness a particle; a
-        # box of spheres would run as a wrong 2D model, so it is refused before YADE is touched.
-        raise ValueError(f"swelldem.dem.to_yade: assembly dim = {assembly.dim} is out of range; allowed: 2 "
-                         "(the contact law and the solvers run 2D sections; a 3D assembly is generated, "
-                         "saved and viewed, not yet run)")
+    dim = getattr(assembly, "dim", 2)
     yade, W = _yade()
+    if dim == 3 and isinstance(solver, W.ImplicitLogTimeSolver):
+        # Refused here, before the scene is built; the solver refuses it too when it starts.
+        raise ValueError("swelldem.dem.to_yade: a 3D assembly with ImplicitLogTimeSolver is out of range; allowed: "
+                         "AdrLogTimeIntegrator (solver 'adr') for 3D scenes, the implicit solver for 2D sections")
     _check_kinds(assembly, kinds)
     n, m = assembly.n_particles, assembly.n_contacts
     if n == 0:
@@ -138,13 +138,15 @@ def to_yade(assembly, kinds, solver, reset=True, density=2400.0, young=30e9, poi
     aggs = [W.ConcreteMat(young=young, poisson=poisson, density=density, aggregateId=k, label=f"aggregate{k}")
             for k in range(assembly.n_aggregates)]
     fixed = () if fixed is None else fixed
-    ip2 = sc.concrete_ip2(kinds, thickness=float(assembly.thickness_m), cohesive=True)
+    # In 3D the Ip2's thickness is unused: every contact's area is the assembly's facet area.
+    ip2 = sc.concrete_ip2(kinds, thickness=float(assembly.thickness_m) if dim == 2 else 1.0, cohesive=True)
     # The assembly's contacts: bonded, stress-free at their initial distance, facet area from Laguerre.
     contacts = np.asarray(assembly.contacts, dtype=np.int64).reshape(-1, 2)
     try:
         ids, inters = sc.build_scene(assembly.x, assembly.y, assembly.r, [mortar] + aggs, ip2, W.Law2_ScGeom_SwellPhys_AgingSwelling(),
                                      solver, material_of=np.asarray(assembly.aggregate_id) + 1, contacts=contacts, fixed=fixed,
-                                     detection_factor=detection_factor, reset=reset)
+                                     detection_factor=detection_factor, reset=reset,
+                                     z=assembly.z if dim == 3 else None)
     finally:
         ip2.cohesive = False  # contacts made from now on are cohesionless
     per_kind = {name: 0 for name in KIND_NAMES}
@@ -167,7 +169,7 @@ def to_yade(assembly, kinds, solver, reset=True, density=2400.0, young=30e9, poi
                            f"centre distance by {worst_dist:.3g} m (> 1e-9 Rmax)")
     counts = {"n_particles": n, "n_contacts": m, "contacts_by_kind": per_kind, "n_aggregate_materials": len(aggs),
               "n_materials": 1 + len(aggs), "n_fixed": len(set(np.atleast_1d(fixed).tolist())), "max_initial_gap_m": float(assembly.gap_m.max()) if m else 0.0,
-              "max_length_mismatch_m": worst_dist, "thickness_m": float(assembly.thickness_m),
+              "max_length_mismatch_m": worst_dist, "thickness_m": float(assembly.thickness_m) if dim == 2 else None, "dim": dim,
               "detection_factor": float(detection_factor), "wall_s": time.time() - t0}
     return YadeScene(ids=ids, mortar_material=mortar, aggregate_materials=aggs,
                      kinds={name: kinds.get(name) for name in KIND_NAMES}, ip2=ip2, solver=solver,

@@ -204,6 +204,14 @@ def disc(center_xy, radius, material, fixed=False):
     return b
 
 
+def sphere(center_xyz, radius, material, fixed=False):
+    """A sphere of a 3D scene, free in every direction (all blocked when fixed). center_xyz, radius [m]."""
+    yade, _ = _yade()
+    b = yade.utils.sphere(tuple(float(c) for c in center_xyz), radius, material=material)
+    b.state.blockedDOFs = "xyzXYZ" if fixed else ""
+    return b
+
+
 def engines(ip2, law2, integrator, ig2=None, detection_factor=1.0, collider=True, extra_engines=()):
     """ForceResetter, the collider (when `collider`), InteractionLoop (label 'iloop'), extra_engines,
     then the integrator. detection_factor [-] is the sphere geometry functor's
@@ -228,11 +236,12 @@ def reset_keeping_tags():
 
 
 def build_scene(x, y, r, materials, ip2, law2, integrator, material_of=None, contacts=None, fixed=(), ig2=None,
-                detection_factor=1.0, collider=True, extra_engines=(), reset=True):
-    """Fills ``yade.Omega()`` with 2D discs, their engines and bonded contacts; every swelldem scene
-    (scenario, benchmarks, cohesive comparison, two particles) is built here.
+                detection_factor=1.0, collider=True, extra_engines=(), reset=True, z=None):
+    """Fills ``yade.Omega()`` with 2D discs (or 3D spheres, given z), their engines and bonded
+    contacts; every swelldem scene (scenario, benchmarks, cohesive comparison, two particles) is built here.
 
-    x, y, r [m]: disc centres and radii (body id = index); materials: YADE materials, appended to
+    x, y, r [m]: disc centres and radii (body id = index); z [m]: the centres' third coordinate,
+    which makes the bodies spheres free in every direction (a 3D scene); materials: YADE materials, appended to
     O.materials in order; material_of: per disc, an index into `materials` (default all 0);
     ip2, law2: the physics and law functors; integrator: the last engine (or None);
     contacts: (m, 2) disc indices whose interactions are created now (bonded, whatever their gap),
@@ -255,7 +264,10 @@ def build_scene(x, y, r, materials, ip2, law2, integrator, material_of=None, con
     for m in materials:
         O.materials.append(m)
     which = np.zeros(n, dtype=int) if material_of is None else np.asarray(material_of, dtype=int)
-    bodies = [disc((float(x[i]), float(y[i])), float(r[i]), materials[which[i]], fixed=i in fixed_set) for i in range(n)]
+    if z is None:
+        bodies = [disc((float(x[i]), float(y[i])), float(r[i]), materials[which[i]], fixed=i in fixed_set) for i in range(n)]
+    else:
+        bodies = [sphere((x[i], y[i], z[i]), float(r[i]), materials[which[i]], fixed=i in fixed_set) for i in range(n)]
     ids = np.asarray(O.bodies.append(bodies), dtype=np.int64)
     if not np.array_equal(ids, np.arange(n)):
         raise RuntimeError("swelldem: YADE gave body ids different from the disc indices")
