@@ -170,6 +170,10 @@ def size_note(res):
     pw, ph = SPECIMEN_SIZE_MM
     if not size:
         return f"Specimen size not recorded; the paper's is {pw:g} x {ph:g} mm."
+    if len(size) == 3:
+        w, h, d = (float(v) for v in size)
+        return (f"Specimen a {w:g} x {h:g} x {d:g} mm box of spheres (3D); the paper's is a {pw:g} x {ph:g} mm section "
+                "(2D), its forces those of a unit thickness: compare shares and strains, not forces.")
     w, h = size
     same = (float(w), float(h)) == (pw, ph)
     return (f"Specimen {float(w):g} x {float(h):g} mm" + (", as the paper's." if same else
@@ -200,8 +204,10 @@ def write_tables(out, res):
              f"normal contact forces at t = {t:g} days", "", size_note(res), "",
              "| contact | contacts | 5 % Fn (kN) | 5 % paper (kN) | 95 % Fn (kN) | 95 % paper (kN) | broken (%) | broken paper (%) | new contacts |",
              "|---|---|---|---|---|---|---|---|---|"]
+    box = res.get("dim") == 3
+    fn = "{:.3g}" if box else "{:.2f}"  # a sphere's facet carries forces three decades below a section's unit thickness
     for r in rows:
-        lines.append(f"| {r['kind']} | {r['n_contacts']} | {r['fn_p05_kN']:.2f} | {_f(r['paper_fn_p05_kN'], '{:.1f}')} | {r['fn_p95_kN']:.2f} | "
+        lines.append(f"| {r['kind']} | {r['n_contacts']} | {fn.format(r['fn_p05_kN'])} | {_f(r['paper_fn_p05_kN'], '{:.1f}')} | {fn.format(r['fn_p95_kN'])} | "
                      f"{_f(r['paper_fn_p95_kN'], '{:.1f}')} | {r['broken']} ({r['broken_pct']:.1f}) | {_f(r['paper_broken_pct'], '{:.1f}')} | "
                      f"{'-' if r['born_broken'] is None else r['born_broken']} |")
     sx, sy = res["swelling_strain_x"], res["swelling_strain_y"]
@@ -214,7 +220,9 @@ def write_tables(out, res):
     if state != "finished":
         lines += ["", f"Run not finished ({state}): the numbers are those of its last step done."]
     if sx:
-        lines += ["", f"Final swelling strain: x {sx[-1] * 1e6:.0f}e-6, y {sy[-1] * 1e6:.0f}e-6. "
+        z = (f", z {res['swelling_strain_z'][-1] * 1e6:.0f}e-6, volume {res['swelling_strain_volume'][-1] * 1e6:.0f}e-6"
+             if box and res.get("swelling_strain_z") else "")
+        lines += ["", f"Final swelling strain: x {sx[-1] * 1e6:.0f}e-6, y {sy[-1] * 1e6:.0f}e-6{z}. "
                       f"{res['n_particles']} particles, {iterations_text(res)}, wall {res['wall_s']:.1f} s."]
     with open(os.path.join(out, "table.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
@@ -222,7 +230,8 @@ def write_tables(out, res):
 
 
 def _title(res):
-    return f"{LABEL.get(res['scenario'], res['scenario'])}, {res['behaviour']}, damage {'on' if res['damage'] else 'off'}"
+    box = ", 3D box" if res.get("dim") == 3 else ""
+    return f"{LABEL.get(res['scenario'], res['scenario'])}, {res['behaviour']}, damage {'on' if res['damage'] else 'off'}{box}"
 
 
 def _save(fig, path, dpi=120):
@@ -327,6 +336,8 @@ def plot_strain(path, res):
     fig, ax = plt.subplots(figsize=(7, 4.5))
     ax.semilogx(t, np.array(res["swelling_strain_x"]) * 1e6, "o-", ms=3, label="specimen, x")
     ax.semilogx(t, np.array(res["swelling_strain_y"]) * 1e6, "s-", ms=3, label="specimen, y")
+    if "swelling_strain_z" in res:
+        ax.semilogx(t, np.array(res["swelling_strain_z"]) * 1e6, "^-", ms=3, label="specimen, z")
     ax.set(xlabel="time [day]", ylabel="swelling strain [1e-6]", title=_title(res))
     ax.grid(True, which="both", lw=0.3)
     if len(t):
@@ -341,9 +352,9 @@ def _capacity(ax, res, name):
     if not cap:
         return
     ax.axhspan(cap["min"], cap["max"], color="0.5", alpha=0.18, lw=0,
-               label=f"tensile capacity $f_t A$, min-max ({cap['min']:.1f}-{cap['max']:.1f} kN)")
+               label=f"tensile capacity $f_t A$, min-max ({cap['min']:.3g}-{cap['max']:.3g} kN)")
     ax.axhline(cap["median"], color="k", ls="--", lw=1,
-               label=f"$f_t A$ median {cap['median']:.2f} kN ($f_t$ = {cap['f_t_Pa'] / 1e6:g} MPa)")
+               label=f"$f_t A$ median {cap['median']:.3g} kN ($f_t$ = {cap['f_t_Pa'] / 1e6:g} MPa)")
 
 
 def _force_panel(ax, res, name, legend=True):
@@ -470,6 +481,8 @@ def write_all(out, res, assembly, broken_contacts):
     crack_map_days(res); broken_contacts: (id1, id2, kindId) of the broken contacts at the end."""
     write_tables(out, res)
     plot_curves(out, res)
+    if getattr(assembly, "dim", 2) == 3:  # the crack maps draw a section's polygons
+        return
     plot_crack_map(out, res, assembly, broken_contacts)
     breaks = load_breaks(out)
     if breaks is not None and res["damage"]:
@@ -615,7 +628,8 @@ CURVES_FILE, PLOT_DATA_FILE = "curves.csv", "plot_data.txt"
 #: The per-step series of results.json's top level, in the curves' order: key -> (name, unit). Platen
 #: series join only for an axis with platens (they are 0 on a free side); the bars' when present.
 STEP_SERIES = {"times_days": ("t", "d"), "swelling_strain_x": ("swelling_strain_x", "-"),
-               "swelling_strain_y": ("swelling_strain_y", "-"), "swelling_strain_area": ("swelling_strain_area", "-"),
+               "swelling_strain_y": ("swelling_strain_y", "-"), "swelling_strain_z": ("swelling_strain_z", "-"),
+               "swelling_strain_area": ("swelling_strain_area", "-"), "swelling_strain_volume": ("swelling_strain_volume", "-"),
                "platen_stress_x_Pa": ("platen_stress_x", "Pa"), "platen_disp_x_m": ("platen_disp_x", "m"),
                "platen_stress_y_Pa": ("platen_stress_y", "Pa"), "platen_disp_y_m": ("platen_disp_y", "m"),
                "rebar_stress_max_Pa": ("rebar_stress_max", "Pa"), "rebar_stress_mean_Pa": ("rebar_stress_mean", "Pa"),

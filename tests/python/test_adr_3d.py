@@ -134,3 +134,49 @@ dump(out)
     # calibrated here, only that the specimen expands as a whole and alike in each direction).
     assert all(0.5 * res["eps_inf"] < e < 2 * res["eps_inf"] for e in strains)
     assert max(strains) - min(strains) < 0.1 * max(strains)
+
+
+# ---------------------------------------------------------------- swelling_test.py --dim 3
+
+def _swelling_test(tmp_path, *args):
+    import os
+    import subprocess
+    from conftest import LAUNCHER, REPO, build_dir
+    env = {**os.environ, "SWELLDEM_BUILD_DIR": build_dir()}
+    return subprocess.run([LAUNCHER, "-j", "1", "-n", "-x", os.path.join(REPO, "scripts", "swelling_test.py"), *args,
+                           "--out", str(tmp_path / "run")], capture_output=True, text=True, timeout=900, env=env)
+
+
+def test_the_swelling_test_of_a_3d_box_records_x_y_z_and_the_volume(tmp_path):
+    import csv
+    import json
+    p = _swelling_test(tmp_path, "--dim", "3", "--size-mm", "10", "10", "10", "--solver", "adr", "--aggregate-area-fraction", "0",
+                       "--behaviour", "elastic", "--no-damage", "--steps-per-decade", "1")
+    assert p.returncode == 0, p.stdout[-3000:] + p.stderr[-3000:]
+    res = json.load(open(tmp_path / "run" / "results.json"))
+    assert res["dim"] == 3 and res["status"] == "finished" and "swelling_strain_area" not in res
+    ex, ey, ez, ev = (res[f"swelling_strain_{k}"][-1] for k in ("x", "y", "z", "volume"))
+    print("measured strains", ex, ey, ez, ev, "eps_inf", res["config"]["eps_inf"])
+    # plain mortar, elastic, free: an isotropic expansion of the order of eps_inf (the 2D micro-macro
+    # rule d_inf = eps_inf 2 R_mean; measured 0.97-0.99 eps_inf), the volume change the product's
+    assert all(0.8 * 1e-3 < e < 1.2 * 1e-3 for e in (ex, ey, ez))
+    assert ev == pytest.approx((1 + ex) * (1 + ey) * (1 + ez) - 1, rel=0.02)
+    with open(tmp_path / "run" / "curves.csv") as f:
+        header = next(csv.reader(f))
+    assert "swelling_strain_z [-]" in header and "swelling_strain_volume [-]" in header
+    assert not (tmp_path / "run" / "crack_map.png").exists() and not (tmp_path / "run" / "vtk").exists()
+    assert "z " in p.stdout and "3D" in open(tmp_path / "run" / "table.md").read()
+
+
+@pytest.mark.parametrize("args, message", [
+    (("--dim", "3", "--size-mm", "30", "30", "30"), "swelldem: solver = 'implicit' is out of range; allowed: adr when dim is 3"),
+    (("--dim", "3", "--size-mm", "30", "30", "--solver", "adr"), "size_mm = "),
+    (("--size-mm", "30", "30", "30"), "size_mm = "),
+    (("--dim", "3", "--size-mm", "30", "30", "30", "--solver", "adr", "--boundary-x", "fixed"),
+     "boundary_x = 'fixed' is out of range; allowed: free when dim is 3"),
+    (("--dim", "4",), "dim = 4 is out of range"),
+])
+def test_what_a_3d_box_does_not_take_is_refused_before_any_work(tmp_path, args, message):
+    p = _swelling_test(tmp_path, *args)
+    assert p.returncode == 2 and message in p.stderr, p.stderr[-2000:]
+    assert not (tmp_path / "run").exists()

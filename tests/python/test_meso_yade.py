@@ -43,6 +43,24 @@ def test_affine_strain_recovers_an_affine_field_exactly():
     assert f["residual_rms"] < 1e-15
 
 
+def test_affine_strain_in_3d_recovers_an_affine_field_exactly():
+    rng = np.random.default_rng(3)
+    X = rng.uniform(0, 0.01, (300, 3))
+    G = np.array([[1.2e-3, 0.3e-3, -0.2e-3], [0.1e-3, -0.4e-3, 0.5e-3], [0.0, 0.2e-3, 0.7e-3]])
+    f = measure.affine_strain(X, X + X @ G.T + np.array([1e-4, -3e-5, 2e-5]))
+    for key, want in (("eps_xx", 1.2e-3), ("eps_yy", -0.4e-3), ("eps_zz", 0.7e-3), ("eps_xy", 0.2e-3),
+                      ("eps_xz", -0.1e-3), ("eps_yz", 0.35e-3), ("eps_vol", 1.5e-3), ("eps_mean", 0.5e-3)):
+        assert f[key] == pytest.approx(want, rel=1e-9), key
+    assert f["rotation"] == pytest.approx([-0.15e-3, -0.1e-3, -0.1e-3], rel=1e-9)
+    assert f["residual_rms"] < 1e-15
+    with pytest.raises(ValueError, match="at least 4"):
+        measure.affine_strain(X[:3], X[:3])
+    with pytest.raises(ValueError, match="coplanar"):
+        flat = X.copy()
+        flat[:, 2] = 0
+        measure.affine_strain(flat, flat)
+
+
 def test_rigid_motion_gives_no_strain():
     X = _cloud(seed=1)
     f = measure.affine_strain(X, _affine(X, np.zeros((2, 2)), (0.3, 0.1), theta=1e-4))

@@ -96,13 +96,15 @@ class StepRecorder:
     def __init__(self, assembly, yscene, solver, res, out, vtk_every=0, platens=None, bars=None, save_state=False, resuming=False):
         self.a, self.ys, self.solver, self.res, self.out, self.vtk_every = assembly, yscene, solver, res, out, vtk_every
         self.platens, self.bars, self.save_state = platens, bars, save_state
-        self.ref = np.column_stack([assembly.x, assembly.y])
-        # Strain of the load-bearing skeleton: discs with fewer than 2 contacts (held by the
-        # specimen's sides during packing) are loose in a free specimen and do not follow it.
-        self.weights = np.where(assembly.coordination() >= 2, assembly.r ** 2, 0.0)
+        self.dim = getattr(assembly, "dim", 2)
+        self.ref = np.column_stack([assembly.x, assembly.y] + ([assembly.z] if self.dim == 3 else []))
+        # Strain of the load-bearing skeleton: particles with fewer contacts than dimensions (held by
+        # the specimen's sides during packing) are loose in a free specimen and do not follow it.
+        self.weights = np.where(assembly.coordination() >= self.dim, assembly.r ** self.dim, 0.0)
         self.t0 = time.time()
         self.bonded = bonded_pairs()
-        self.vtk = None if resuming else self._vtk_series()
+        # The ParaView series draws each disc's Laguerre polygon: a 3D box writes none (docs/guide.md).
+        self.vtk = None if resuming or self.dim == 3 else self._vtk_series()
         self.pairs = np.array(sorted(self.bonded), dtype=np.int32).reshape(-1, 2)
         self.pair_index = {tuple(p): c for c, p in enumerate(self.pairs.tolist())}
         self.pair_kind = np.full(len(self.pairs), -1, dtype=np.int8)
@@ -140,7 +142,7 @@ class StepRecorder:
             self.bars.yield_day = day if day is not None and k and day <= r["times_days"][-1] else None
             r["rebar"]["yield_day"] = self.bars.yield_day
         self.solver_totals()
-        self.vtk = self._vtk_series(keep_before=k)
+        self.vtk = self._vtk_series(keep_before=k) if self.dim == 2 else None
         self.t0 = time.time() - float(r.get("wall_s") or 0.0)
         return k
 
@@ -151,8 +153,14 @@ class StepRecorder:
         r["times_days"].append(solver.physTime)
         r["swelling_strain_x"].append(s["eps_xx"])
         r["swelling_strain_y"].append(s["eps_yy"])
-        # the area change of the affine fit, det(I + grad u) - 1 (exact, not the small-strain e_xx + e_yy)
-        r["swelling_strain_area"].append(float(np.linalg.det(np.eye(2) + np.asarray(s["gradient"]))) - 1)
+        # the area (3D: volume) change of the affine fit, det(I + grad u) - 1 (exact, not the
+        # small-strain trace)
+        change = float(np.linalg.det(np.eye(self.dim) + np.asarray(s["gradient"]))) - 1
+        if self.dim == 3:
+            r["swelling_strain_z"].append(s["eps_zz"])
+            r["swelling_strain_volume"].append(change)
+        else:
+            r["swelling_strain_area"].append(change)
         for axis in ("x", "y"):
             r[f"platen_stress_{axis}_Pa"].append(self.platens.stress(axis) if self.platens else 0.0)
             r[f"platen_disp_{axis}_m"].append(self.platens.displacement(axis) if self.platens else 0.0)
@@ -222,7 +230,7 @@ class StepRecorder:
         """The VTK files of the last recorded step, unless already written (the run's end exports
         its last step whatever vtk_every)."""
         step = len(self.res["times_days"]) - 1
-        if step >= 0 and not self.vtk.exported(step):
+        if self.vtk is not None and step >= 0 and not self.vtk.exported(step):
             self.vtk.export(step, self.res["times_days"][step])
 
 
