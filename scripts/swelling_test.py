@@ -16,8 +16,8 @@ or of every k-th with --vtk-every k, and particles.pvd / contacts.pvd with the t
 DIR/curves.csv and DIR/plot_data.txt (every per-step series; the second in yade.plot.saveDataTxt's form)
 and, with --save-state, DIR/state.yade after every step (--resume DIR continues a run stopped
 after some steps from it, with the run's own settings) and DIR/final.yade.gz at the end.
-A 3D box (--dim 3) writes the same but for the crack maps and the ParaView files, which draw a
-section's polygons; its results gain the z strain and the volume change.
+A 3D box (--dim 3) writes the same but for the crack maps, which draw a section's polygons; its
+results gain the z strain and the volume change, its ParaView files hold the spheres as points.
 The options are the fields of swelldem.scenario.SwellingTest; --kind-param sets any ContactKind
 attribute of one kind, --solver-param any setting of the solver (see `--help`).
 
@@ -50,5 +50,5 @@ print(f"swelling_test: {test.scenario} {test.behaviour} damage {'on' if test.dam
       f"{res['n_particles']} particles, strain x {res['swelling_strain_x'][-1] * 1e6:.0f}e-6 y {res['swelling_strain_y'][-1] * 1e6:.0f}e-6{z}, "
       f"iterations {res['iterations']}, wall {res['wall_s']:.1f} s")
 print(open(os.path.join(test.out, "table.md")).read())
-drawn = "" if test.dim == 3 else ", crack_map.png, vtk/"
-print(f"results, tables and plots in {test.out}/ (swelling_strain.png, unbalanced.png, force_quantiles.png{drawn})")
+drawn = "" if test.dim == 3 else ", crack_map.png"
+print(f"results, tables and plots in {test.out}/ (swelling_strain.png, unbalanced.png, force_quantiles.png{drawn}, vtk/)")

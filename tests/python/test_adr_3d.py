@@ -5,6 +5,7 @@ the affine strain d_inf dxi / (2 r) in x, y and z) and held on its outer layer (
 contact at -kn d_inf dxi); a 3D mesostructure runs to its end; what the 3D path refuses."""
 import math
 
+import numpy as np
 import pytest
 
 # An FCC lattice of equal spheres (nearest neighbours 2R apart: centres at (i, j, k) x sqrt(2) R with
@@ -164,8 +165,23 @@ def test_the_swelling_test_of_a_3d_box_records_x_y_z_and_the_volume(tmp_path):
     with open(tmp_path / "run" / "curves.csv") as f:
         header = next(csv.reader(f))
     assert "swelling_strain_z [-]" in header and "swelling_strain_volume [-]" in header
-    assert not (tmp_path / "run" / "crack_map.png").exists() and not (tmp_path / "run" / "vtk").exists()
+    assert not (tmp_path / "run" / "crack_map.png").exists()
     assert "z " in p.stdout and "3D" in open(tmp_path / "run" / "table.md").read()
+    # ParaView: the spheres as points with their arrays as point data, the contacts with both shears
+    import glob
+    from conftest import read_vtp
+    last = sorted(glob.glob(str(tmp_path / "run" / "vtk" / "particles_*.vtp")))[-1]
+    poly, _, pts, field = read_vtp(last)
+    assert poly.GetNumberOfPoints() == res["n_particles"] == poly.GetNumberOfVerts()
+    for name, comps in (("displacement", 3), ("radius", 1), ("stress", 9), ("meanStress", 1), ("damage", 1)):
+        assert name in pts and (pts[name].shape[1] if pts[name].ndim == 2 else 1) == comps, name
+    centre = np.array([poly.GetPoint(k) for k in range(poly.GetNumberOfPoints())])
+    assert np.ptp(centre[:, 2]) > 0.9e-2                           # the box's depth, not a plane
+    # the displacement field is the swelling: z displacement across the depth ~ the z strain
+    slope = np.polyfit(centre[:, 2], pts["displacement"][:, 2], 1)[0]
+    assert slope == pytest.approx(ez, rel=0.05)
+    _, cells, _, _ = read_vtp(last.replace("particles_", "contacts_"))
+    assert "Fs2" in cells and len(cells["Fs2"]) == sum(res["n_contacts_by_kind"].values())
 
 
 @pytest.mark.parametrize("args, message", [

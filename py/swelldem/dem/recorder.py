@@ -103,8 +103,7 @@ class StepRecorder:
         self.weights = np.where(assembly.coordination() >= self.dim, assembly.r ** self.dim, 0.0)
         self.t0 = time.time()
         self.bonded = bonded_pairs()
-        # The ParaView series draws each disc's Laguerre polygon: a 3D box writes none (docs/guide.md).
-        self.vtk = None if resuming or self.dim == 3 else self._vtk_series()
+        self.vtk = None if resuming else self._vtk_series()
         self.pairs = np.array(sorted(self.bonded), dtype=np.int32).reshape(-1, 2)
         self.pair_index = {tuple(p): c for c, p in enumerate(self.pairs.tolist())}
         self.pair_kind = np.full(len(self.pairs), -1, dtype=np.int8)
@@ -117,6 +116,8 @@ class StepRecorder:
         res["tensile_capacity_kN"] = tensile_capacity()
 
     def _vtk_series(self, keep_before=0):
+        if self.dim == 3:
+            return VtkSeries(os.path.join(self.out, "vtk"), self.bonded, keep_before=keep_before, cell_volume=self.a.cell_volume_m3)
         return VtkSeries(os.path.join(self.out, "vtk"), self.bonded, cell_area=self.a.cell_area_m2, thickness=self.a.thickness_m,
                          keep_before=keep_before)
 
@@ -142,7 +143,7 @@ class StepRecorder:
             self.bars.yield_day = day if day is not None and k and day <= r["times_days"][-1] else None
             r["rebar"]["yield_day"] = self.bars.yield_day
         self.solver_totals()
-        self.vtk = self._vtk_series(keep_before=k) if self.dim == 2 else None
+        self.vtk = self._vtk_series(keep_before=k)
         self.t0 = time.time() - float(r.get("wall_s") or 0.0)
         return k
 
