@@ -389,3 +389,24 @@ def test_compatible_swelling_gives_eps_inf_exactly(tmp_path):
         assert res[k] == pytest.approx(want, rel=2e-4), k
     assert abs(res["eps_final_xy"]) < 1e-4 * want
     assert res["final_fn_over_free_swelling_force"] < 1e-3
+
+
+def test_compatible_swelling_of_a_3d_box_gives_eps_inf_exactly(tmp_path):
+    """The same check on a box of spheres (table_3_2.py --dim 3): d_inf = eps_inf x L on every
+    contact is an affine expansion without force, x, y and z alike."""
+    eps_inf, t_start, t_end, tau_c, tau_l = 1000e-6, 0.01, 3650.0, 50.0, 100.0
+    out = tmp_path / "out"
+    p = subprocess.run([LAUNCHER, "-n", "-x", TABLE_SCRIPT, "--dim", "3", "--size-mm", "8", "8", "8", "--seed", "2",
+                        "--steps-per-decade", "3", "--case", "isr", "--eps-inf", repr(eps_inf), "--t-start", repr(t_start),
+                        "--d-inf-rule", "contact-length", "--out", str(out)], capture_output=True, text=True, timeout=600,
+                       env={**os.environ, "SWELLDEM_BUILD_DIR": build_dir()})
+    assert p.returncode == 0, p.stdout[-3000:] + p.stderr[-3000:]
+    res = json.loads((out / "results.json").read_text())
+    xi = lambda t: (1 - math.exp(-t / tau_c)) / (1 + math.exp(-(t - tau_l) / tau_c))
+    want = eps_inf * (xi(t_end) - xi(t_start))
+    assert res["dim"] == 3 and res["eps_final_side"] is None
+    print("measured", [res[k] / want - 1 for k in ("eps_final_x", "eps_final_y", "eps_final_z")], res["final_fn_over_free_swelling_force"])
+    for k in ("eps_final_x", "eps_final_y", "eps_final_z"):
+        assert res[k] == pytest.approx(want, rel=2e-4), k
+    assert abs(res["eps_final_xy"]) < 1e-4 * want
+    assert res["final_fn_over_free_swelling_force"] < 1e-3
