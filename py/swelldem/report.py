@@ -277,10 +277,17 @@ def plot_unbalanced(path, res):
     n = min(len(ends), len(at_end))
     ax.semilogy(ends[:n], at_end[:n], "o", ms=3, color="navy", label="at convergence (step end)")
     ro = np.array(res.get("step_at_round_off", [False] * n), dtype=bool)[:n]
-    if ro.any():  # steps whose load was too small for the tolerance: ended at the positions' round-off
-        ax.semilogy(ends[:n][ro], at_end[:n][ro], "x", color="tab:red", label="step ended at the round-off limit")
+    limit = np.asarray(res.get("round_off_ratio") or [], dtype=float)
+    if len(limit) >= n and n and np.isfinite(limit[:n]).any():
+        # the ratio below which the positions resolve no better equilibrium, at each step's end
+        ax.semilogy(ends[:n], limit[:n], "_", ms=9, mew=1.5, color="tab:orange",
+                    label="round-off limit of the positions\n(no equilibrium resolved below it)")
+    if ro.any():  # steps that ended at that limit, above the tolerance
+        ax.semilogy(ends[:n][ro], at_end[:n][ro], "x", color="tab:red",
+                    label=f"step ended at the round-off limit\n({int(ro.sum())} of {n} steps)")
     if _tolerance(res):
-        ax.axhline(_tolerance(res), color="k", lw=0.8, ls=":", label=f"tolerance {_tolerance(res):g}")
+        met = n - int(ro.sum())
+        ax.axhline(_tolerance(res), color="k", lw=0.8, ls=":", label=f"tolerance {_tolerance(res):g}\n(met by {met} of {n} steps)")
     trans = blended_transform_factory(ax.transData, ax.transAxes)
     for k, x in enumerate(ends):
         ax.axvline(x, color="0.6", lw=0.4, zorder=0)
@@ -634,7 +641,7 @@ STEP_SERIES = {"times_days": ("t", "d"), "swelling_strain_x": ("swelling_strain_
                "platen_stress_y_Pa": ("platen_stress_y", "Pa"), "platen_disp_y_m": ("platen_disp_y", "m"),
                "rebar_stress_max_Pa": ("rebar_stress_max", "Pa"), "rebar_stress_mean_Pa": ("rebar_stress_mean", "Pa"),
                "unbalanced_ratio": ("unbalanced_ratio", "-"), "iterations_per_step": ("iterations", "-"),
-               "step_at_round_off": ("step_at_round_off", "-")}
+               "step_at_round_off": ("step_at_round_off", "-"), "round_off_ratio": ("round_off_ratio", "-")}
 #: Unit of a per-kind series by the suffix of its results.json key (none: a count or a ratio, '-').
 _SUFFIX_UNITS = (("_kN", "kN"), ("_Pa", "Pa"), ("_m", "m"))
 

@@ -174,6 +174,8 @@ class StepRecorder:
         r["iterations_per_step"].append(int(solver.stepIterations[-1]))
         round_off = getattr(solver, "stepRoundOff", None)  # a solver without a round-off stop has none
         r["step_at_round_off"].append(bool(round_off[-1]) if round_off else False)
+        limit = getattr(solver, "stepRoundOffRatio", None)
+        r.setdefault("round_off_ratio", []).append(float(limit[-1]) if limit else float("nan"))
         for k, name in enumerate(KIND_NAMES):
             sel = kind == k
             q05, q95 = (np.quantile(fn[sel], [0.05, 0.95]) / 1e3).tolist() if sel.any() else (float("nan"),) * 2
