@@ -356,7 +356,7 @@ def run_kinetics(res):
     reference temperature, days [day], temperatures [K] of its history (empty: the reference
     temperature throughout), reference temperature [K], Uc [K], UL [K]), from results.json's kinds
     and temperature record; the scenario's kinetics at 20 C for a record without them."""
-    name = SCENARIOS[res["scenario"]]["swelling_kinds"][0]
+    name = (SCENARIOS[res["scenario"]]["swelling_kinds"] or ("AGG",))[0]  # asr-coarse: the aggregates' gel pockets
     k = (res.get("kinds") or {}).get(name) or {}
     tau_c, tau_l, _ = KINETICS[SCENARIOS[res["scenario"]]["kinetics"]]
     temp = ((res.get("temperature") or {}).get("per_kind") or {}).get(name) or {}
