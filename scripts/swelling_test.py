@@ -8,6 +8,7 @@
       [--temperature-c T | --temperature-csv FILE] [--boundary-x free|fixed|stress:S|spring:K] \
       [--boundary-y ...] [--rebar-ratio R] [--save-state] --out DIR
   scripts/yade-swelldem -n -x scripts/swelling_test.py --resume DIR
+  scripts/yade-swelldem -n -x scripts/swelling_test.py --dim 3 --size-mm W H D --solver adr ... --out DIR
 
 writes DIR/results.json, DIR/table.md, DIR/table.csv, DIR/*.png (swelling strain, unbalanced force,
 force quantiles, crack map) and DIR/vtk/ (ParaView: particles and contacts .vtp files of the last step,
@@ -15,6 +16,8 @@ or of every k-th with --vtk-every k, and particles.pvd / contacts.pvd with the t
 DIR/curves.csv and DIR/plot_data.txt (every per-step series; the second in yade.plot.saveDataTxt's form)
 and, with --save-state, DIR/state.yade after every step (--resume DIR continues a run stopped
 after some steps from it, with the run's own settings) and DIR/final.yade.gz at the end.
+A 3D box (--dim 3) writes the same but for the crack maps, which draw a section's polygons; its
+results gain the z strain and the volume change, its ParaView files hold the spheres as points.
 The options are the fields of swelldem.scenario.SwellingTest; --kind-param sets any ContactKind
 attribute of one kind, --solver-param any setting of the solver (see `--help`).
 
@@ -42,8 +45,10 @@ with options.refuse_bad("swelling_test.py"):  # exit status 2, as argparse's, be
     prepared = scenario.prepare(test)
 # a run that stops (failed, interrupted) ends with its one-line status on stderr and exit status 1
 res = scenario.run_or_exit(test, "swelling_test.py", prepared, resume=bool(args.resume))
+z = f" z {res['swelling_strain_z'][-1] * 1e6:.0f}e-6, volume {res['swelling_strain_volume'][-1] * 1e6:.0f}e-6" if test.dim == 3 else ""
 print(f"swelling_test: {test.scenario} {test.behaviour} damage {'on' if test.damage else 'off'}, solver {test.solver}: "
-      f"{res['n_particles']} particles, strain x {res['swelling_strain_x'][-1] * 1e6:.0f}e-6 y {res['swelling_strain_y'][-1] * 1e6:.0f}e-6, "
+      f"{res['n_particles']} particles, strain x {res['swelling_strain_x'][-1] * 1e6:.0f}e-6 y {res['swelling_strain_y'][-1] * 1e6:.0f}e-6{z}, "
       f"iterations {res['iterations']}, wall {res['wall_s']:.1f} s")
 print(open(os.path.join(test.out, "table.md")).read())
-print(f"results, tables and plots in {test.out}/ (swelling_strain.png, unbalanced.png, force_quantiles.png, crack_map.png, vtk/)")
+drawn = "" if test.dim == 3 else ", crack_map.png"
+print(f"results, tables and plots in {test.out}/ (swelling_strain.png, unbalanced.png, force_quantiles.png{drawn}, vtk/)")

@@ -9,6 +9,9 @@ with at least 2 contacts; the few discs that the packing leaves held by the side
 free specimen and are left out).
 
   scripts/yade-swelldem -n -x scripts/table_3_2.py --size-mm 20 20 --seed 1 --out DIR [--case asr]
+  scripts/yade-swelldem -n -x scripts/table_3_2.py --dim 3 --size-mm 12 12 12 --seed 1 --out DIR   (a box of spheres:
+      the same rule's strain in 3D, the skeleton being the spheres with at least 3 contacts; eps_final is the
+      mean of x, y and z, and the strain between the sides is not measured)
 --d-inf-rule contact-length gives every contact d_inf = eps_inf x L instead (a compatible expansion:
 the strain must then be eps_inf exactly, with no force left; a check of the chain scene-solver-measure).
 Writes DIR/displacements.npz (reference and final centres, radii, contacts, final Fn), DIR/results.json (case, n_particles, r_mean_m, d_inf_m, eps_final_x/_y, eps_final,
@@ -23,7 +26,8 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(
 from swelldem import options, paper  # noqa: E402
 
 ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-ap.add_argument("--size-mm", type=float, nargs=2, default=(20.0, 20.0), metavar=("W", "H"), help="specimen size [mm]")
+ap.add_argument("--size-mm", type=float, nargs="+", default=(20.0, 20.0), metavar="W H [D]", help="specimen size [mm] (W H D with --dim 3)")
+ap.add_argument("--dim", type=int, default=2, choices=(2, 3), help="2: a section of discs; 3: a box of spheres")
 ap.add_argument("--seed", type=int, default=1)
 ap.add_argument("--case", choices=tuple(paper.KINETICS), default="isr")
 ap.add_argument("--steps-per-decade", type=float, default=10)
@@ -43,7 +47,8 @@ from swelldem import dem, measure, meso  # noqa: E402
 
 with options.refuse_bad("table_3_2.py"):  # every option, before any work; exit status 2 as argparse's
     args = ap.parse_args(sys.argv[1:])
-    options.numbers("size_mm", args.size_mm, count=2, lo=4, lo_incl=True, allowed="two finite lengths >= 4 [mm] (a few discs)")
+    options.numbers("size_mm", args.size_mm, count=args.dim, lo=4, lo_incl=True,
+                    allowed=f"{'two' if args.dim == 2 else 'three'} finite lengths >= 4 [mm] (a few particles)")
     options.integer("seed", args.seed, lo=0)
     options.number("steps_per_decade", args.steps_per_decade, lo=0)
     options.tolerance("tolerance", args.tolerance)
@@ -63,32 +68,41 @@ PAPER_EPS_FINAL = paper.TABLE_3_2_EPS_FINAL
 t0 = time.time()
 os.makedirs(args.out, exist_ok=True)
 
-a = meso.generate(seed=args.seed, width_mm=args.size_mm[0], height_mm=args.size_mm[1], aggregate_area_fraction=0.0)
+box = dict(dim=3, depth_mm=args.size_mm[2]) if args.dim == 3 else {}
+a = meso.generate(seed=args.seed, width_mm=args.size_mm[0], height_mm=args.size_mm[1], aggregate_area_fraction=0.0, **box)
 r_mean = float(a.r.mean())
 d_inf = args.eps_inf * 2 * r_mean
 kind.swellDispInf = d_inf
 ys = dem.to_yade(a, {"MORTAR": kind}, solver)
 if args.d_inf_rule == "contact-length":
     dem.set_contact_swelling(ys, np.arange(a.n_contacts), args.eps_inf * a.distance_m)
-ref = np.column_stack([a.x, a.y])
-# The strain is measured on the load-bearing skeleton: particles with at least 2 contacts. The
-# packing leaves a few discs held only by the specimen sides (0 or 1 contact with another disc);
-# in a free specimen they do not follow the expansion (0 contacts) or pivot freely (1 contact).
+ref = np.column_stack([a.x, a.y] + ([a.z] if args.dim == 3 else []))
+# The strain is measured on the load-bearing skeleton: particles with at least as many contacts as
+# dimensions. The packing leaves a few particles held only by the specimen sides; in a free
+# specimen they do not follow the expansion (no contact) or pivot freely (fewer).
 coordination = a.coordination()
-skeleton = coordination >= 2
+skeleton = coordination >= args.dim
 hist = {"times_days": [args.t_start], "eps_x": [0.0], "eps_y": [0.0], "eps_xy": [0.0], "eps_side_x": [0.0], "eps_side_y": [0.0],
         "eps_robust_x": [0.0], "eps_robust_y": [0.0], "rotation_rad": [0.0], "residual_rms_m": [0.0]}
+if args.dim == 3:
+    hist.update(eps_z=[0.0], eps_robust_z=[0.0])
+    del hist["eps_side_x"], hist["eps_side_y"], hist["rotation_rad"]
 
 
 def table_3_2_record():
     cur = ys.positions()[skeleton]
     f = measure.affine_strain(ref[skeleton], cur)
     rb = measure.affine_strain(ref[skeleton], cur, robust=True)
-    sd = measure.side_strain(ref[skeleton], cur, a.r[skeleton], band=a.r.max())
     hist["times_days"].append(solver.physTime)
-    for key, v in (("eps_x", f["eps_xx"]), ("eps_y", f["eps_yy"]), ("eps_xy", f["eps_xy"]), ("eps_side_x", sd["eps_x"]),
-                   ("eps_side_y", sd["eps_y"]), ("eps_robust_x", rb["eps_xx"]), ("eps_robust_y", rb["eps_yy"]),
-                   ("rotation_rad", f["rotation"]), ("residual_rms_m", f["residual_rms"])):
+    for key, v in (("eps_x", f["eps_xx"]), ("eps_y", f["eps_yy"]), ("eps_xy", f["eps_xy"]), ("eps_robust_x", rb["eps_xx"]),
+                   ("eps_robust_y", rb["eps_yy"]), ("residual_rms_m", f["residual_rms"])):
+        hist[key].append(v)
+    if args.dim == 3:
+        hist["eps_z"].append(f["eps_zz"])
+        hist["eps_robust_z"].append(rb["eps_zz"])
+        return
+    sd = measure.side_strain(ref[skeleton], cur, a.r[skeleton], band=a.r.max())
+    for key, v in (("eps_side_x", sd["eps_x"]), ("eps_side_y", sd["eps_y"]), ("rotation_rad", f["rotation"])):
         hist[key].append(v)
 
 
@@ -100,6 +114,10 @@ dem.run_to_end(solver)
 fn = np.array([ys.interaction(c).phys.Fn for c in range(a.n_contacts)])
 L, A = a.distance_m, a.facet_area_m2
 eps_x, eps_y = hist["eps_x"][-1], hist["eps_y"][-1]
+axes_eps = [eps_x, eps_y] + ([hist["eps_z"][-1]] if args.dim == 3 else [])
+eps_final = float(np.mean(axes_eps))
+robust = [hist[f"eps_robust_{k}"][-1] for k in "xyz"[:args.dim]]
+side = None if args.dim == 3 else 0.5 * (hist["eps_side_x"][-1] + hist["eps_side_y"][-1])
 xi_end, xi_start = float(paper.larive_xi(t_end, args.case)), float(paper.larive_xi(args.t_start, args.case))
 res = {
     "case": args.case, "d_inf_rule": args.d_inf_rule, "size_mm": list(args.size_mm), "seed": args.seed, "n_particles": a.n_particles, "n_contacts": a.n_contacts,
@@ -109,11 +127,11 @@ res = {
     "eps_inf": args.eps_inf, "d_inf_m": d_inf if args.d_inf_rule == "mean-radius" else None, "young_Pa": args.young, "tau_c_days": tau_c, "tau_l_days": tau_l,
     "t_start_days": args.t_start, "t_end_days": t_end, "steps_per_decade": args.steps_per_decade, "tolerance": args.tolerance,
     "xi_end_minus_xi_start": float(xi_end - xi_start),
-    "eps_final_x": eps_x, "eps_final_y": eps_y, "eps_final": 0.5 * (eps_x + eps_y), "eps_final_xy": hist["eps_xy"][-1],
-    "eps_final_side_x": hist["eps_side_x"][-1], "eps_final_side_y": hist["eps_side_y"][-1],
-    "eps_final_side": 0.5 * (hist["eps_side_x"][-1] + hist["eps_side_y"][-1]),
-    "eps_final_robust": 0.5 * (hist["eps_robust_x"][-1] + hist["eps_robust_y"][-1]),
-    "eps_final_over_eps_inf": 0.5 * (eps_x + eps_y) / args.eps_inf,
+    "dim": args.dim, "eps_final_x": eps_x, "eps_final_y": eps_y, "eps_final_z": hist["eps_z"][-1] if args.dim == 3 else None,
+    "eps_final": eps_final, "eps_final_xy": hist["eps_xy"][-1],
+    "eps_final_side_x": None if side is None else hist["eps_side_x"][-1], "eps_final_side_y": None if side is None else hist["eps_side_y"][-1],
+    "eps_final_side": side, "eps_final_robust": float(np.mean(robust)),
+    "eps_final_over_eps_inf": eps_final / args.eps_inf,
     "paper_eps_final": PAPER_EPS_FINAL, "paper_r_mean_m": paper.TABLE_3_2_R_MEAN,
     # Affine estimate: uniform isotropic strain e with no shear; equilibrium of the whole network
     # in the trace gives sum kn (e L - d) L = 0, kn = E A / L, hence e = d_inf / (A-weighted mean L).
@@ -138,19 +156,25 @@ fig, ax = plt.subplots(figsize=(6.4, 4.2))
 t = res["times_days"][1:]
 ax.semilogx(t, np.array(hist["eps_x"][1:]) * 1e6, "o-", ms=3, label="x (affine fit)")
 ax.semilogx(t, np.array(hist["eps_y"][1:]) * 1e6, "s-", ms=3, mfc="none", label="y (affine fit)")
-ax.semilogx(t, 0.5 * (np.array(hist["eps_side_x"][1:]) + np.array(hist["eps_side_y"][1:])) * 1e6, ":", label="mean, between sides")
+if args.dim == 3:
+    ax.semilogx(t, np.array(hist["eps_z"][1:]) * 1e6, "^-", ms=3, mfc="none", label="z (affine fit)")
+else:
+    ax.semilogx(t, 0.5 * (np.array(hist["eps_side_x"][1:]) + np.array(hist["eps_side_y"][1:])) * 1e6, ":", label="mean, between sides")
 tt = np.array(t)
 xi = paper.larive_xi(tt, args.case)
 ax.semilogx(tt, args.eps_inf * xi * 1e6, "k--", lw=0.8, label="eps_inf xi(t) (micro-macro rule)")
 ax.axhline(PAPER_EPS_FINAL * 1e6, color="r", lw=0.8, label="paper, Table 3.2: 1061")
 ax.set_xlabel("time [day]")
 ax.set_ylabel("free swelling strain [1e-6]")
-ax.set_title(f"Table 3.2, {args.case.upper()}{'' if args.d_inf_rule == 'mean-radius' else ', d_inf = eps_inf L'}: {a.n_particles} discs, {args.size_mm[0]:g} x {args.size_mm[1]:g} mm, seed {args.seed}")
+what = "spheres" if args.dim == 3 else "discs"
+ax.set_title(f"Table 3.2, {args.case.upper()}{'' if args.d_inf_rule == 'mean-radius' else ', d_inf = eps_inf L'}: {a.n_particles} {what}, "
+             f"{' x '.join(f'{v:g}' for v in args.size_mm)} mm, seed {args.seed}")
 ax.legend(fontsize=8)
 fig.tight_layout()
 fig.savefig(os.path.join(args.out, "strain.png"), dpi=120)
-print(f"table_3_2: {args.case} {a.n_particles} discs R_mean={r_mean * 1e3:.4f} mm d_inf rule {args.d_inf_rule} "
+z_text = f" z={hist['eps_z'][-1] * 1e6:.1f}e-6" if args.dim == 3 else ""
+print(f"table_3_2: {args.case} {a.n_particles} {what} R_mean={r_mean * 1e3:.4f} mm d_inf rule {args.d_inf_rule} "
       f"(2 eps_inf R_mean = {d_inf * 1e6:.4f}e-6 m): "
-      f"eps_final x={eps_x * 1e6:.1f}e-6 y={eps_y * 1e6:.1f}e-6 mean={res['eps_final'] * 1e6:.1f}e-6 "
+      f"eps_final x={eps_x * 1e6:.1f}e-6 y={eps_y * 1e6:.1f}e-6{z_text} mean={res['eps_final'] * 1e6:.1f}e-6 "
       f"(affine estimate {res['eps_affine_estimate'] * 1e6:.1f}e-6, paper 1061e-6), "
       f"ADR iterations {res['adr_iterations']}, wall {res['wall_s']:.1f} s -> {args.out}")

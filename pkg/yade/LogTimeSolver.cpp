@@ -346,7 +346,9 @@ LogTimeSolver::Balance LogTimeSolver::measureBalance()
 	b.ratio = (nFree == 0 || meanContact == 0) ? (sumRes == 0 ? 0.0 : std::numeric_limits<Real>::infinity()) : (sumRes / nFree) / meanContact;
 	// Below this residual positions cannot resolve a better equilibrium (their round-off times the
 	// stiffness): a step loaded by next to nothing converges there instead of never.
-	b.atRoundOff = nReal > 0 && nFree > 0 && sumRes / nFree <= 256 * std::numeric_limits<Real>::epsilon() * posScale * sumKn / nReal;
+	const Real floor = nReal > 0 ? 256 * std::numeric_limits<Real>::epsilon() * posScale * sumKn / nReal : 0;
+	b.atRoundOff     = nReal > 0 && nFree > 0 && sumRes / nFree <= floor;
+	b.roundOff       = meanContact > 0 ? floor / meanContact : 0;
 	unbalanced   = b.ratio;
 	// Each step's first iteration marks where its load enters, the regular records show the decay,
 	// the converged iteration (commitPhysicalStep) where it ends.
@@ -367,6 +369,7 @@ LogTimeSolver::StepOutcome LogTimeSolver::settleStep(const Balance& b, bool conv
 	if (iterInStep >= minIterations && !newBreaks && converged) {
 		if (breakOverloaded() == 0) {
 			stepRoundOff.push_back(b.ratio > tolerance ? 1.0 : 0.0);
+			stepRoundOffRatio.push_back(b.roundOff);
 			if (beforeCommit) beforeCommit();
 			commitPhysicalStep();
 			out = StepOutcome::Committed;
@@ -394,8 +397,13 @@ void LogTimeSolver::progressLine() const
 	const double el   = wallNow();
 	const double last = stepWall.size() >= 2 ? stepWall.back() - stepWall[stepWall.size() - 2] : el;
 	const double left = std::max(el / step, last) * (nSteps() - step);
-	std::printf("swelldem: step %d/%d  t = %s d  %s iterations %ld%s (total %ld)  unbalanced %.2e  elapsed %.1f s  left ~%.1f s\n", step,
-	            nSteps(), num(physTime).c_str(), iterationName, iterInStep, (progressDetail ? progressDetail() : std::string()).c_str(), totalIterations, unbalanced, el, left);
+	// A step that ended above the tolerance ended at the positions' round-off: say so, and where that lies.
+	char reached[96] = "";
+	if (!stepRoundOff.empty() && stepRoundOff.back() > 0 && !stepRoundOffRatio.empty())
+		std::snprintf(reached, sizeof reached, " (at round-off: limit %.1e, tolerance %.0e)", stepRoundOffRatio.back(), tolerance);
+	std::printf("swelldem: step %d/%d  t = %s d  %s iterations %ld%s (total %ld)  unbalanced %.2e%s  elapsed %.1f s  left ~%.1f s\n", step,
+	            nSteps(), num(physTime).c_str(), iterationName, iterInStep, (progressDetail ? progressDetail() : std::string()).c_str(), totalIterations,
+	            unbalanced, reached, el, left);
 	std::fflush(stdout);
 }
 

@@ -58,6 +58,9 @@ public:
 	X(std::vector<Real>, stepUnbalanced, std::vector<Real>(), swelldem_attr::Result, "Unbalanced-force ratio at the end of each converged step [-]")  \
 	X(std::vector<Real>, stepRoundOff, std::vector<Real>(), swelldem_attr::Result,                                                                      \
 	  "1 where a step ended at the round-off limit of the positions above the tolerance, else 0 [-]")                                                \
+	X(std::vector<Real>, stepRoundOffRatio, std::vector<Real>(), swelldem_attr::Result,                                                                 \
+	  "Unbalanced-force ratio of the positions' round-off limit at the end of each converged step (256 machine epsilons of the "             \
+	  "largest coordinate times the mean contact stiffness, over the mean contact force): no equilibrium is resolved below it [-]")       \
 	X(std::vector<Real>, stepWall, std::vector<Real>(), swelldem_attr::Result, "Wall time at the end of each converged step since the start [s]")    \
 	X(std::vector<Real>, historyIteration, std::vector<Real>(), swelldem_attr::Result,                                                                  \
 	  "Cumulative iteration (totalIterations) of each record of the unbalanced-force history (historyEvery) [-]")                                   \
@@ -101,6 +104,7 @@ protected:
 	struct Balance {
 		Real ratio      = 0;     // unbalanced-force ratio
 		bool atRoundOff = false; // below what the positions' round-off can resolve
+		Real roundOff   = 0;     // the ratio at that limit
 		long nReal      = 0;     // real contacts
 	};
 	enum class StepOutcome { Continue, Broke, Committed };

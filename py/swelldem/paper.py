@@ -5,6 +5,8 @@
 Plain Python (numpy only): the mesostructure generator, the YADE scenes, the scenarios, the
 reports and the scripts all read these names from here. Units are in each name's comment.
 """
+import math
+
 import numpy as np
 
 # Contact kinds. The ids are those of ContactKind.kindId / SwellPhys.kindId in the plugin and of
@@ -111,6 +113,37 @@ VARIATION = {
             "asr-fine": {"MORTAR": (-95, -84), "ITZ": (-94, -97), "AGG": (-160, -94)},
             "asr-coarse": {"MORTAR": (-68, -75), "ITZ": (-84, -87), "AGG": (-97, -96)}},
 }
+
+
+#: Arrhenius constants of Larive's kinetics (activation energy over R [K]) and their reference
+#: temperature [K] (Larive 1998; Ulm et al. 2000), the ContactKind defaults.
+LARIVE_UC, LARIVE_UL, LARIVE_T0 = 5400.0, 9400.0, 293.15
+
+
+def larive_xi_under(t, tau_c, tau_l, days=(), temperatures_K=(), T0=LARIVE_T0, Uc=LARIVE_UC, UL=LARIVE_UL):
+    """Larive's swelling ratio xi [-] at times t [day] under a temperature history (days [day],
+    temperatures_K [K], linear in between, held before the first and after the last; none: T0
+    throughout), tau_c and tau_L [day] being the values at T0 and tau(T) = tau(T0) exp(U (1/T - 1/T0)).
+    At one temperature the closed form of that temperature; under a history Larive's ODE
+    t_c dxi/dt + xi = 1, t_c = tau_c (1 + e^(-tau_L/tau_c)) / (xi + e^(-tau_L/tau_c)), integrated from
+    xi(0) = 0 by scipy (tolerance 1e-10). Evaluated in numpy/scipy, independent of the plugin."""
+    t = np.asarray(t, dtype=float)
+    scale = lambda T, U: np.exp(U * (1.0 / np.asarray(T, dtype=float) - 1.0 / T0))  # noqa: E731
+    if len(days) <= 1:
+        T = temperatures_K[0] if len(days) else T0
+        tc, tl = tau_c * scale(T, Uc), tau_l * scale(T, UL)
+        return (1 - np.exp(-t / tc)) / (1 + np.exp(-(t - tl) / tc))
+    from scipy.integrate import solve_ivp
+
+    def rate(time, xi):
+        T = np.interp(time, days, temperatures_K)
+        tc, tl = tau_c * scale(T, Uc), tau_l * scale(T, UL)
+        e = math.exp(-tl / tc)
+        return (1 - xi) * (xi + e) / (tc * (1 + e))
+
+    flat = t.ravel()
+    sol = solve_ivp(rate, (0.0, float(flat.max(initial=0.0))), [0.0], method="LSODA", rtol=1e-10, atol=1e-12, dense_output=True)
+    return np.clip(sol.sol(flat)[0], 0.0, 1.0).reshape(t.shape)
 
 
 def free_swelling(t, scenario, eps_inf=EPS_INF, t_start=1.0):

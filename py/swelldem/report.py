@@ -10,7 +10,8 @@ import time
 
 import numpy as np
 
-from .paper import (BEHAVIOUR_KEYS, BEHAVIOUR_WORDS, EPS_INF, KIND_NAMES, KINETICS, SCENARIOS, SPECIMEN_SIZE_MM,
+from .paper import (BEHAVIOUR_KEYS, BEHAVIOUR_WORDS, EPS_INF, KIND_NAMES, KINETICS, LARIVE_T0, LARIVE_UC, LARIVE_UL, SCENARIOS,
+                    SPECIMEN_SIZE_MM, larive_xi_under,
                     TABLE_FORCES, VARIATION, free_swelling)
 
 LABEL = {"isr": "ISR", "asr-fine": "ASR-fine agg.", "asr-coarse": "ASR-coarse agg."}
@@ -163,6 +164,42 @@ def run_key(res):
     return None if key is None else "-".join(key)
 
 
+#: Settings of a swelling test that change the physics away from the paper's study when set away
+#: from their default (the scenario's); the solver and the outputs are not conditions.
+_PARAMETER_SETTINGS = ("eps_inf", "gel_fraction", "shear_ratio", "aggregate_young", "strength_scale",
+                       "kelvin_units_per_decade", "parameters", "aggregate_area_fraction", "t_start_days", "t_end_days")
+
+
+def run_conditions(res):
+    """The run's conditions away from the paper's study (a free 2D section at the kinds' reference
+    temperatures with the paper's parameters), as short texts in a fixed order: temperature,
+    platens or applied stress per axis, bars, a 3D box, and every parameter or kind parameter set
+    away from its default. [] for a run under the paper's conditions (or without a config)."""
+    cfg = res.get("config") or {}
+    if not cfg:
+        return []
+    from .scenario import SwellingTest  # plain Python, loaded with the package
+    defaults = SwellingTest()
+    out = []
+    if cfg.get("temperature_c") is not None and cfg["temperature_c"] != 20.0:  # 20 C: the paper's
+        out.append(f"{cfg['temperature_c']:g} C")
+    elif cfg.get("temperature_csv"):
+        out.append(f"temperature history {os.path.basename(str(cfg['temperature_csv']))}")
+    for axis in ("x", "y"):
+        if cfg.get(f"boundary_{axis}", "free") != "free":
+            out.append(f"{axis} sides {cfg[f'boundary_{axis}']}")
+    if cfg.get("rebar_ratio"):
+        out.append(f"bars {100 * cfg['rebar_ratio']:g} %")
+    if cfg.get("dim") == 3:
+        out.append("3D box")
+    for name in _PARAMETER_SETTINGS:
+        if name in cfg and json.dumps(cfg[name]) != json.dumps(getattr(defaults, name)):
+            out.append(f"{name}={setting_text(res, name)}")
+    if cfg.get("kind_params"):
+        out.append(setting_text(res, "kind_params"))
+    return out
+
+
 def size_note(res):
     """One sentence: the run's specimen size against the paper's (forces and broken counts depend
     on it: docs/scenarios.md compares 40 and 100 mm)."""
@@ -170,6 +207,10 @@ def size_note(res):
     pw, ph = SPECIMEN_SIZE_MM
     if not size:
         return f"Specimen size not recorded; the paper's is {pw:g} x {ph:g} mm."
+    if len(size) == 3:
+        w, h, d = (float(v) for v in size)
+        return (f"Specimen a {w:g} x {h:g} x {d:g} mm box of spheres (3D); the paper's is a {pw:g} x {ph:g} mm section "
+                "(2D), its forces those of a unit thickness: compare shares and strains, not forces.")
     w, h = size
     same = (float(w), float(h)) == (pw, ph)
     return (f"Specimen {float(w):g} x {float(h):g} mm" + (", as the paper's." if same else
@@ -187,7 +228,9 @@ def write_tables(out, res):
     of the same run beside ours (when the paper has the run) and the specimen size against the paper's."""
     rows = final_rows(res)
     key = paper_key(res)
-    ref = TABLE_FORCES.get(key, {})
+    cond = run_conditions(res)
+    # the paper's values stand beside a run of its conditions only
+    ref = TABLE_FORCES.get(key, {}) if not cond else {}
     for r in rows:
         p = ref.get(r["kind"], {})
         r.update(paper_fn_p05_kN=p.get("p05"), paper_fn_p95_kN=p.get("p95"), paper_broken_pct=p.get("broken_pct"))
@@ -197,16 +240,21 @@ def write_tables(out, res):
         w.writerows(rows)
     t = res["times_days"][-1] if res["times_days"] else float("nan")
     lines = [f"# {LABEL.get(res['scenario'], res['scenario'])}, {res['behaviour']}, damage {'on' if res['damage'] else 'off'}: "
-             f"normal contact forces at t = {t:g} days", "", size_note(res), "",
+             f"normal contact forces at t = {t:g} days", "", (f"Conditions: {'; '.join(cond)}. " if cond else "") + size_note(res), "",
              "| contact | contacts | 5 % Fn (kN) | 5 % paper (kN) | 95 % Fn (kN) | 95 % paper (kN) | broken (%) | broken paper (%) | new contacts |",
              "|---|---|---|---|---|---|---|---|---|"]
+    box = res.get("dim") == 3
+    fn = "{:.3g}" if box else "{:.2f}"  # a sphere's facet carries forces three decades below a section's unit thickness
     for r in rows:
-        lines.append(f"| {r['kind']} | {r['n_contacts']} | {r['fn_p05_kN']:.2f} | {_f(r['paper_fn_p05_kN'], '{:.1f}')} | {r['fn_p95_kN']:.2f} | "
+        lines.append(f"| {r['kind']} | {r['n_contacts']} | {fn.format(r['fn_p05_kN'])} | {_f(r['paper_fn_p05_kN'], '{:.1f}')} | {fn.format(r['fn_p95_kN'])} | "
                      f"{_f(r['paper_fn_p95_kN'], '{:.1f}')} | {r['broken']} ({r['broken_pct']:.1f}) | {_f(r['paper_broken_pct'], '{:.1f}')} | "
                      f"{'-' if r['born_broken'] is None else r['born_broken']} |")
     sx, sy = res["swelling_strain_x"], res["swelling_strain_y"]
     table = {"nodmg": "3.4", "dmg": "3.6"}[key[2]] if key else None
-    lines += ["", (f"Paper: Table {table}, its {LABEL[key[0]]} {BEHAVIOUR_WORDS[key[1]]} run. " if key else "Paper: no run of these settings. ")
+    paper_line = (f"Paper: Table {table}, its {LABEL[key[0]]} {BEHAVIOUR_WORDS[key[1]]} run. " if key and not cond else
+                  f"Paper: its runs are free 2D sections at 20 C with its parameters; this run differs ({'; '.join(cond)}), so "
+                  "the paper's values are not set beside it. " if cond else "Paper: no run of these settings. ")
+    lines += ["", paper_line
               + "Broken: contacts bonded at the start that broke (share of the kind's contacts). New contacts: "
               "contacts made during the run by discs coming into touch, born broken (compression only), not counted as broken. "
               "Variations to a reference run (the paper's Table 3.7 form): scripts/compare_runs.py or scripts/paper_study.py."]
@@ -214,7 +262,9 @@ def write_tables(out, res):
     if state != "finished":
         lines += ["", f"Run not finished ({state}): the numbers are those of its last step done."]
     if sx:
-        lines += ["", f"Final swelling strain: x {sx[-1] * 1e6:.0f}e-6, y {sy[-1] * 1e6:.0f}e-6. "
+        z = (f", z {res['swelling_strain_z'][-1] * 1e6:.0f}e-6, volume {res['swelling_strain_volume'][-1] * 1e6:.0f}e-6"
+             if box and res.get("swelling_strain_z") else "")
+        lines += ["", f"Final swelling strain: x {sx[-1] * 1e6:.0f}e-6, y {sy[-1] * 1e6:.0f}e-6{z}. "
                       f"{res['n_particles']} particles, {iterations_text(res)}, wall {res['wall_s']:.1f} s."]
     with open(os.path.join(out, "table.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
@@ -222,7 +272,10 @@ def write_tables(out, res):
 
 
 def _title(res):
-    return f"{LABEL.get(res['scenario'], res['scenario'])}, {res['behaviour']}, damage {'on' if res['damage'] else 'off'}"
+    """The run: scenario, behaviour, damage, and its conditions away from the paper's (run_conditions)."""
+    cond = run_conditions(res)
+    return (f"{LABEL.get(res['scenario'], res['scenario'])}, {res['behaviour']}, damage {'on' if res['damage'] else 'off'}"
+            + (f"\n{', '.join(cond)}" if cond else ""))
 
 
 def _save(fig, path, dpi=120):
@@ -268,10 +321,17 @@ def plot_unbalanced(path, res):
     n = min(len(ends), len(at_end))
     ax.semilogy(ends[:n], at_end[:n], "o", ms=3, color="navy", label="at convergence (step end)")
     ro = np.array(res.get("step_at_round_off", [False] * n), dtype=bool)[:n]
-    if ro.any():  # steps whose load was too small for the tolerance: ended at the positions' round-off
-        ax.semilogy(ends[:n][ro], at_end[:n][ro], "x", color="tab:red", label="step ended at the round-off limit")
+    limit = np.asarray(res.get("round_off_ratio") or [], dtype=float)
+    if len(limit) >= n and n and np.isfinite(limit[:n]).any():
+        # the ratio below which the positions resolve no better equilibrium, at each step's end
+        ax.semilogy(ends[:n], limit[:n], "_", ms=9, mew=1.5, color="tab:orange",
+                    label="round-off limit of the positions\n(no equilibrium resolved below it)")
+    if ro.any():  # steps that ended at that limit, above the tolerance
+        ax.semilogy(ends[:n][ro], at_end[:n][ro], "x", color="tab:red",
+                    label=f"step ended at the round-off limit\n({int(ro.sum())} of {n} steps)")
     if _tolerance(res):
-        ax.axhline(_tolerance(res), color="k", lw=0.8, ls=":", label=f"tolerance {_tolerance(res):g}")
+        met = n - int(ro.sum())
+        ax.axhline(_tolerance(res), color="k", lw=0.8, ls=":", label=f"tolerance {_tolerance(res):g}\n(met by {met} of {n} steps)")
     trans = blended_transform_factory(ax.transData, ax.transAxes)
     for k, x in enumerate(ends):
         ax.axvline(x, color="0.6", lw=0.4, zorder=0)
@@ -291,6 +351,29 @@ def plot_unbalanced(path, res):
     _save(fig, path)
 
 
+def run_kinetics(res):
+    """The swelling kinetics the run's swelling phase followed: (tau_c [day], tau_L [day] at the
+    reference temperature, days [day], temperatures [K] of its history (empty: the reference
+    temperature throughout), reference temperature [K], Uc [K], UL [K]), from results.json's kinds
+    and temperature record; the scenario's kinetics at 20 C for a record without them."""
+    name = (SCENARIOS[res["scenario"]]["swelling_kinds"] or ("AGG",))[0]  # asr-coarse: the aggregates' gel pockets
+    k = (res.get("kinds") or {}).get(name) or {}
+    tau_c, tau_l, _ = KINETICS[SCENARIOS[res["scenario"]]["kinetics"]]
+    temp = ((res.get("temperature") or {}).get("per_kind") or {}).get(name) or {}
+    return (float(k.get("tauC", tau_c)), float(k.get("tauL", tau_l)), list(temp.get("days") or []),
+            list(temp.get("temperatures_K") or []), float(k.get("referenceTemperature", LARIVE_T0)),
+            float(k.get("Uc", LARIVE_UC)), float(k.get("UL", LARIVE_UL)))
+
+
+def run_free_swelling(res, t, t0):
+    """The free swelling strain [-] of the run's swelling phase at times t [day] since t0 [day], under
+    the run's own kinetics and temperature history: eps_inf (xi(t) - xi(t0))."""
+    eps_inf = (res.get("config") or {}).get("eps_inf", EPS_INF)
+    tau_c, tau_l, days, temps, T0, Uc, UL = run_kinetics(res)
+    xi = larive_xi_under(np.append(np.asarray(t, dtype=float), t0), tau_c, tau_l, days, temps, T0, Uc, UL)
+    return eps_inf * (xi[:-1] - xi[-1])
+
+
 def _free_swelling_curve(ax, res, t_last, specimen_max):
     """The scenario's free swelling eps_inf (xi(t) - xi(t0)) as a black dashed line [1e-6], on a
     right-hand axis of its own when the specimen swells less than a fifth of it (ASR-coarse: only
@@ -299,15 +382,22 @@ def _free_swelling_curve(ax, res, t_last, specimen_max):
     cfg = res.get("config") or {}
     eps_inf = cfg.get("eps_inf", EPS_INF)
     t0 = (res.get("solver_settings") or {}).get("tStart", cfg.get("t_start_days", 1.0))  # --solver-param tStart= has the last word
-    tau_c, tau_l, _ = KINETICS[SCENARIOS[res["scenario"]]["kinetics"]]
+    tau_c, tau_l, days, temps, T0, Uc, UL = run_kinetics(res)
     tt = np.geomspace(t0, t_last, 200)
-    free = free_swelling(tt, res["scenario"], eps_inf, t0) * 1e6
+    free = run_free_swelling(res, tt, t0) * 1e6
+    if len(days) == 1:  # one temperature: the kinetics' times at it
+        f = lambda U: math.exp(U * (1 / temps[0] - 1 / T0))  # noqa: E731
+        at = f"at {temps[0] - 273.15:g} C: $\\tau_c$ {tau_c * f(Uc):.3g} d, $\\tau_L$ {tau_l * f(UL):.3g} d"
+    elif days:
+        at = f"under the run's temperature history ($\\tau_c$ {tau_c:g} d, $\\tau_L$ {tau_l:g} d at {T0 - 273.15:g} C)"
+    else:
+        at = f"$\\tau_c$ {tau_c:g} d, $\\tau_L$ {tau_l:g} d"
     phase = "gel pockets" if res["scenario"] == "asr-coarse" else " and ".join(SCENARIOS[res["scenario"]]["swelling_kinds"]) + " contacts"
     apart = specimen_max == specimen_max and specimen_max < 0.2 * free.max()
     fax = ax.twinx() if apart else ax
     fax.semilogx(tt, free, "--", color="k", lw=1,
                  label=f"free swelling of the swelling phase ({phase}){', right axis' if apart else ''}:\n"
-                       f"$\\varepsilon_\\infty$ = {eps_inf * 1e6:g}e-6 x Larive $\\xi(t)$, $\\tau_c$ {tau_c:g} d, $\\tau_L$ {tau_l:g} d")
+                       f"$\\varepsilon_\\infty$ = {eps_inf * 1e6:g}e-6 x Larive $\\xi(t)$, {at}")
     if apart:
         fax.set_ylabel("free swelling [1e-6]")
     handles = ax.get_legend_handles_labels()[0] + (fax.get_legend_handles_labels()[0] if apart else [])
@@ -327,6 +417,8 @@ def plot_strain(path, res):
     fig, ax = plt.subplots(figsize=(7, 4.5))
     ax.semilogx(t, np.array(res["swelling_strain_x"]) * 1e6, "o-", ms=3, label="specimen, x")
     ax.semilogx(t, np.array(res["swelling_strain_y"]) * 1e6, "s-", ms=3, label="specimen, y")
+    if "swelling_strain_z" in res:
+        ax.semilogx(t, np.array(res["swelling_strain_z"]) * 1e6, "^-", ms=3, label="specimen, z")
     ax.set(xlabel="time [day]", ylabel="swelling strain [1e-6]", title=_title(res))
     ax.grid(True, which="both", lw=0.3)
     if len(t):
@@ -341,9 +433,9 @@ def _capacity(ax, res, name):
     if not cap:
         return
     ax.axhspan(cap["min"], cap["max"], color="0.5", alpha=0.18, lw=0,
-               label=f"tensile capacity $f_t A$, min-max ({cap['min']:.1f}-{cap['max']:.1f} kN)")
+               label=f"tensile capacity $f_t A$, min-max ({cap['min']:.3g}-{cap['max']:.3g} kN)")
     ax.axhline(cap["median"], color="k", ls="--", lw=1,
-               label=f"$f_t A$ median {cap['median']:.2f} kN ($f_t$ = {cap['f_t_Pa'] / 1e6:g} MPa)")
+               label=f"$f_t A$ median {cap['median']:.3g} kN ($f_t$ = {cap['f_t_Pa'] / 1e6:g} MPa)")
 
 
 def _force_panel(ax, res, name, legend=True):
@@ -444,11 +536,21 @@ def broken_at(breaks, step):
 
 
 def crack_map_days(res):
-    """The times [day] of the intermediate crack maps: the scenario's latency time tau_L (the free
-    swelling is 43 % done) and 2 tau_L (86 %), those before the run's last step."""
-    tau_c, tau_l, _ = KINETICS[SCENARIOS[res["scenario"]]["kinetics"]]
+    """The times [day] of the intermediate crack maps: the run's latency time tau_L and 2 tau_L at
+    its temperature, when it has one; under a temperature history the times at which its free
+    swelling has done what it does by tau_L and 2 tau_L at the reference temperature (43 % and
+    86 % for the paper's kinetics); those before the run's last step."""
+    tau_c, tau_l, days, temps, T0, Uc, UL = run_kinetics(res)
     t = res["times_days"]
-    return [d for d in (tau_l, 2 * tau_l) if t and t[0] <= d < t[-1]]
+    if len(days) <= 1:
+        scale = math.exp(UL * (1 / temps[0] - 1 / T0)) if days else 1.0
+        marks = [tau_l * scale, 2 * tau_l * scale]
+    else:
+        ref = larive_xi_under(np.array([tau_l, 2 * tau_l]), tau_c, tau_l)
+        grid = np.geomspace(1e-3, max(t[-1] if t else 1.0, 1.0) * 10, 4000)
+        xi = larive_xi_under(grid, tau_c, tau_l, days, temps, T0, Uc, UL)
+        marks = [float(np.interp(x, xi, grid)) for x in ref if x <= xi[-1]]
+    return [float(f"{d:.4g}") for d in marks if t and t[0] <= d < t[-1]]
 
 
 def plot_crack_maps(out, res, assembly, breaks, days):
@@ -470,6 +572,8 @@ def write_all(out, res, assembly, broken_contacts):
     crack_map_days(res); broken_contacts: (id1, id2, kindId) of the broken contacts at the end."""
     write_tables(out, res)
     plot_curves(out, res)
+    if getattr(assembly, "dim", 2) == 3:  # the crack maps draw a section's polygons
+        return
     plot_crack_map(out, res, assembly, broken_contacts)
     breaks = load_breaks(out)
     if breaks is not None and res["damage"]:
@@ -615,12 +719,13 @@ CURVES_FILE, PLOT_DATA_FILE = "curves.csv", "plot_data.txt"
 #: The per-step series of results.json's top level, in the curves' order: key -> (name, unit). Platen
 #: series join only for an axis with platens (they are 0 on a free side); the bars' when present.
 STEP_SERIES = {"times_days": ("t", "d"), "swelling_strain_x": ("swelling_strain_x", "-"),
-               "swelling_strain_y": ("swelling_strain_y", "-"), "swelling_strain_area": ("swelling_strain_area", "-"),
+               "swelling_strain_y": ("swelling_strain_y", "-"), "swelling_strain_z": ("swelling_strain_z", "-"),
+               "swelling_strain_area": ("swelling_strain_area", "-"), "swelling_strain_volume": ("swelling_strain_volume", "-"),
                "platen_stress_x_Pa": ("platen_stress_x", "Pa"), "platen_disp_x_m": ("platen_disp_x", "m"),
                "platen_stress_y_Pa": ("platen_stress_y", "Pa"), "platen_disp_y_m": ("platen_disp_y", "m"),
                "rebar_stress_max_Pa": ("rebar_stress_max", "Pa"), "rebar_stress_mean_Pa": ("rebar_stress_mean", "Pa"),
                "unbalanced_ratio": ("unbalanced_ratio", "-"), "iterations_per_step": ("iterations", "-"),
-               "step_at_round_off": ("step_at_round_off", "-")}
+               "step_at_round_off": ("step_at_round_off", "-"), "round_off_ratio": ("round_off_ratio", "-")}
 #: Unit of a per-kind series by the suffix of its results.json key (none: a count or a ratio, '-').
 _SUFFIX_UNITS = (("_kN", "kN"), ("_Pa", "Pa"), ("_m", "m"))
 

@@ -64,7 +64,9 @@ class SwellingTest:
                             choices=BEHAVIOURS)
     damage: bool = _field(True, "brittle contacts with the paper's Table 3.5 strengths (--no-damage: never break)",
                           sets="ContactKind.damage")
-    size_mm: tuple = _field((30.0, 30.0), "specimen width and height", unit="mm")
+    size_mm: tuple = _field((30.0, 30.0), "specimen width and height, and its depth when dim is 3 (W H D)", unit="mm")
+    dim: int = _field(2, "specimen: 2, a section of discs; 3, a box of spheres with polyhedral aggregates (solver adr; "
+                         "free, without platens, restraint or bars)")
     seed: int = _field(1, "mesostructure seed (integer >= 0)")
     solver: str = _field("implicit", "quasi-static solver: implicit (each step's exact equilibrium by Newton and a sparse Cholesky factor) "
                          "or adr (adaptive dynamic relaxation, the paper's method)", choices=tuple(SOLVERS))
@@ -125,10 +127,15 @@ class SwellingTest:
         options.choice("solver", self.solver, tuple(SOLVERS))
         if not isinstance(self.damage, bool):
             _bad("damage", self.damage, "True, False")
+        if self.dim not in (2, 3) or isinstance(self.dim, bool):
+            _bad("dim", self.dim, "2 (a section), 3 (a box of spheres)")
+        lengths = "two finite lengths > 0 [mm] (W H)" if self.dim == 2 else "three finite lengths > 0 [mm] (W H D, dim 3)"
         try:
-            options.numbers("size_mm", self.size_mm, count=2, lo=0, unit="mm", allowed="two finite lengths > 0 [mm]")
+            options.numbers("size_mm", self.size_mm, count=self.dim, lo=0, unit="mm", allowed=lengths)
         except TypeError:
-            _bad("size_mm", self.size_mm, "two finite lengths > 0 [mm]")
+            _bad("size_mm", self.size_mm, lengths)
+        if self.dim == 3:
+            self._validate_3d()
         options.integer("seed", self.seed, lo=0)
         options.number("steps_per_decade", self.steps_per_decade, lo=0)
         if self.tolerance is not None:  # None: the solver's own, its class's default
@@ -162,8 +169,7 @@ class SwellingTest:
         # the mesostructure generator's own checks (a specimen too small for the sieve fractions, an
         # aggregate fraction it cannot place, ...), run here so that they too come before any work
         from .meso import MesoParameters
-        overrides = {} if self.aggregate_area_fraction < 0 else {"aggregate_area_fraction": self.aggregate_area_fraction}
-        MesoParameters().replace(width_mm=self.size_mm[0], height_mm=self.size_mm[1], **overrides).validate()
+        MesoParameters().replace(**self.meso_overrides()).validate()
         options.output_folder("out", self.out)  # a folder the run can write into (made by run()), nothing made here
         if not isinstance(self.kind_params, dict):
             _bad("kind_params", self.kind_params, "a dict {kind name: {ContactKind attribute: value}}")
@@ -185,6 +191,29 @@ class SwellingTest:
         tol = self.solver_params.get("tolerance")
         if options.is_number(tol) and 0 < tol < 1:
             options.tolerance("solver_params tolerance", tol, solver=self.solver)  # the loose-tolerance warning
+
+    def _validate_3d(self):
+        """What a 3D box does not take (yet): the implicit solver (its tangent is that of discs), the
+        structures of a section (platens, restraint, bars) and the macro calibration (a 2D test)."""
+        if self.solver != "adr":
+            _bad("solver", self.solver, "adr when dim is 3 (ImplicitLogTimeSolver assembles the tangent of discs)")
+        for axis in ("x", "y"):
+            if getattr(self, f"boundary_{axis}") != "free":
+                _bad(f"boundary_{axis}", getattr(self, f"boundary_{axis}"), "free when dim is 3 (platens hold the sides of a section)")
+        if self.rebar_ratio != 0:
+            _bad("rebar_ratio", self.rebar_ratio, "0 when dim is 3 (bars are laid in a section)")
+        if self.parameters != "paper-micro":
+            _bad("parameters", self.parameters, "paper-micro when dim is 3 (the macro calibration is a 2D test)")
+
+    def meso_overrides(self):
+        """The mesostructure generator's parameters this test sets: size (and depth and dim in 3D),
+        and the aggregate fraction when given."""
+        kw = dict(width_mm=self.size_mm[0], height_mm=self.size_mm[1])
+        if self.dim == 3:
+            kw.update(dim=3, depth_mm=self.size_mm[2])
+        if not self.aggregate_area_fraction < 0:
+            kw["aggregate_area_fraction"] = self.aggregate_area_fraction
+        return kw
 
     def temperature_history(self):
         """(days [day], temperatures [K]) of temperature_c or temperature_csv, None without either;
@@ -299,8 +328,10 @@ def add_arguments(parser):
             else:
                 parser.add_argument(flag, dest=f.name, action="store_true", help=help_text)
         elif isinstance(default, tuple):
-            parser.add_argument(flag, dest=f.name, type=type(default[0]), nargs=len(default), default=default,
-                                metavar=("W", "H") if f.name == "size_mm" else None, help=help_text + f" (default {default})")
+            # size_mm takes W H, or W H D for a 3D box (validate() checks the count against dim)
+            parser.add_argument(flag, dest=f.name, type=type(default[0]), nargs="+" if f.name == "size_mm" else len(default),
+                                default=default, metavar="W H [D]" if f.name == "size_mm" else None,
+                                help=help_text + f" (default {default})")
         elif isinstance(default, dict):
             parser.add_argument(flag, dest=f.name, action="append", default=[],
                                 metavar="KIND.ATTR=VALUE" if f.name == "kind_params" else "NAME=VALUE", help=help_text)
@@ -623,9 +654,9 @@ def make_assembly(test):
     """The mesostructure of a test (swelldem.meso.generate of its size, seed and aggregate
     fraction), with the discs its bars replace carved out; plain Python."""
     from . import meso
-    overrides = {} if test.aggregate_area_fraction < 0 else {"aggregate_area_fraction": test.aggregate_area_fraction}
-    print(f"swelldem: set-up: mesostructure {test.size_mm[0]:g} x {test.size_mm[1]:g} mm, seed {test.seed}", flush=True)
-    assembly = meso.generate(seed=test.seed, width_mm=test.size_mm[0], height_mm=test.size_mm[1], **overrides)
+    size = " x ".join(f"{v:g}" for v in test.size_mm)
+    print(f"swelldem: set-up: mesostructure {size} mm, seed {test.seed}", flush=True)
+    assembly = meso.generate(seed=test.seed, **test.meso_overrides())
     lay = test.rebar_layout()  # checked by validate(), before any work
     if lay is not None:
         from .dem import rebar
@@ -690,7 +721,7 @@ def build(test, prepared=None, extra_times=(), assembly=None, reset=True, t0=Non
     d_inf = test.eps_inf * 2 * r_mean  # the paper's micro-macro rule (Table 3.2)
     set_swelling(test, kinds, d_inf)
     ys = dem.to_yade(assembly, kinds, solver, reset=reset)
-    print(f"swelldem: set-up: {len(assembly.x)} discs, {len(ys.contacts)} bonded contacts, "
+    print(f"swelldem: set-up: {len(assembly.x)} {'spheres' if test.dim == 3 else 'discs'}, {len(ys.contacts)} bonded contacts, "
           f"{time.time() - t0:.1f} s", flush=True)
     gel = []
     if test.scenario == "asr-coarse":
@@ -794,11 +825,15 @@ def run(test, prepared=None, extra_times=(), after_step=None, resume=False):
            "calibration": cal, "d_inf_m": d_inf, "r_mean_m": r_mean, "n_particles": int(len(assembly.x)),
            "n_contacts_by_kind": counts, "n_gel_pockets": int(len(gel)), "times_days": [], "swelling_strain_x": [],
            "swelling_strain_y": [], "swelling_strain_area": [], "platen_stress_x_Pa": [], "platen_stress_y_Pa": [],
-           "platen_disp_x_m": [], "platen_disp_y_m": [], "unbalanced_ratio": [], "iterations_per_step": [], "step_at_round_off": [], "iterations": 0,
+           "platen_disp_x_m": [], "platen_disp_y_m": [], "unbalanced_ratio": [], "iterations_per_step": [], "step_at_round_off": [],
+           "round_off_ratio": [], "iterations": 0,
            "newton_iterations": 0, "relaxation_iterations": 0,
            "per_kind": {n: {"fn_p05_kN": [], "fn_p95_kN": [], "broken": [], "born_broken": []} for n in paper.KIND_NAMES},
            "temperature": temperature_record(test, kinds),
            "status": "running", "wall_s": 0.0, "yade_tags": batch_tags()}
+    if test.dim == 3:  # a box: the z strain and the volume change instead of the area change
+        del res["swelling_strain_area"]
+        res.update(dim=3, swelling_strain_z=[], swelling_strain_volume=[])
     if bars is not None:
         res["rebar"] = {"ratio": lay.ratio, "n_bars": lay.n_bars, "y_m": list(lay.y_m), "thickness_m": lay.thickness_m,
                         "disc_radius_m": lay.radius_m, "young_Pa": lay.young, "yield_stress_Pa": lay.yield_stress, "yield_day": None,

@@ -7,6 +7,7 @@ shares counted over the contacts bonded at the start:
         --behaviour elastic --size-mm 40 40 --seed 1 --solver implicit [--tolerance TOL] \\
         [--break-rule all|one] [--steps-per-decade 10] [--parameters paper-micro] \\
         [--solver-param lowRankChanges=0 ...] [--out DIR]
+    ... --dim 3 --size-mm 15 15 15 --solver adr [--aggregate-area-fraction F]   (a 3D box)
 
 Prints one line `RESULT {json}`: status ('finished' or 'failed: <message>'), iterations, wall
 time of the run [s] (set-up excluded), the final swelling strains, and the broken share [%] of the
@@ -16,6 +17,7 @@ docs/contact-law-and-solver.md (break rule) quote its figures.
 import argparse
 import json
 import os
+import resource
 import sys
 import tempfile
 import time
@@ -33,7 +35,9 @@ def main(argv):
     ap = argparse.ArgumentParser(prog="bench_implicit_damage.py", description=__doc__.split("\n\n")[0])
     ap.add_argument("--scenario", choices=list(paper.SCENARIOS), default="isr")
     ap.add_argument("--behaviour", choices=["elastic", "viscoelastic"], default="elastic")
-    ap.add_argument("--size-mm", type=float, nargs=2, default=[20.0, 20.0])
+    ap.add_argument("--size-mm", type=float, nargs="+", default=[20.0, 20.0], help="W H, or W H D with --dim 3")
+    ap.add_argument("--dim", type=int, default=2, help="2: a section; 3: a box of spheres (solver adr)")
+    ap.add_argument("--aggregate-area-fraction", type=float, default=-1.0, help="< 0: the generator's default")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--solver", choices=["adr", "implicit"], default="implicit")
     ap.add_argument("--tolerance", type=float, default=None, help="absent: the solver's own default")
@@ -49,7 +53,8 @@ def main(argv):
     with options.refuse_bad("bench_implicit_damage.py"):
         params = dict(scenario.parse_solver_param(text) for text in a.solver_param)
         params = {"verbose": a.verbose, "breakOneAtATime": a.break_rule == "one", **params}
-        test = scenario.SwellingTest(scenario=a.scenario, behaviour=a.behaviour, damage=True, size_mm=tuple(a.size_mm),
+        test = scenario.SwellingTest(scenario=a.scenario, behaviour=a.behaviour, damage=True, size_mm=tuple(a.size_mm), dim=a.dim,
+                                     aggregate_area_fraction=a.aggregate_area_fraction,
                                      seed=a.seed, parameters=a.parameters, steps_per_decade=a.steps_per_decade,
                                      tolerance=a.tolerance, solver=a.solver, solver_params=params,
                                      # the test's own folder is not written (only --out's result.json)
@@ -70,13 +75,18 @@ def main(argv):
     kind, _, broken, was_bonded = recorder.contact_arrays(bonded)
     pct = {n: round(100.0 * float((broken & was_bonded & (kind == k)).sum()) / max(int((kind0 == k).sum()), 1), 2)
            for k, n in enumerate(paper.KIND_NAMES)}
-    strain = affine_strain(np.column_stack([assembly.x, assembly.y]), ys.positions(),
-                           weights=np.where(assembly.coordination() >= 2, assembly.r ** 2, 0.0))
+    xyz = [assembly.x, assembly.y] + ([assembly.z] if a.dim == 3 else [])
+    strain = affine_strain(np.column_stack(xyz), ys.positions(),
+                           weights=np.where(assembly.coordination() >= a.dim, assembly.r ** a.dim, 0.0))
     result = {
         "scenario": a.scenario, "behaviour": a.behaviour, "size_mm": list(a.size_mm), "seed": a.seed, "solver": a.solver,
         "break_rule": a.break_rule, "status": status, "iterations": solver.totalIterations, "wall_s": round(wall, 2),
         "factorizations": getattr(solver, "factorizations", None), "settings": dict(item.split("=", 1) for item in a.solver_param),
-        "strain_x": float(strain["eps_xx"]), "strain_y": float(strain["eps_yy"]), "broken_pct": pct}
+        "strain_x": float(strain["eps_xx"]), "strain_y": float(strain["eps_yy"]), "broken_pct": pct,
+        "n_particles": int(len(assembly.x)), "n_contacts": int(len(ys.contacts)),
+        "peak_mb": round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, 1)}
+    if a.dim == 3:
+        result.update(dim=3, strain_z=float(strain["eps_zz"]))
     print("RESULT " + json.dumps(result), flush=True)
     if a.out:
         os.makedirs(a.out, exist_ok=True)

@@ -5,6 +5,7 @@ the affine strain d_inf dxi / (2 r) in x, y and z) and held on its outer layer (
 contact at -kn d_inf dxi); a 3D mesostructure runs to its end; what the 3D path refuses."""
 import math
 
+import numpy as np
 import pytest
 
 # An FCC lattice of equal spheres (nearest neighbours 2R apart: centres at (i, j, k) x sqrt(2) R with
@@ -134,3 +135,64 @@ dump(out)
     # calibrated here, only that the specimen expands as a whole and alike in each direction).
     assert all(0.5 * res["eps_inf"] < e < 2 * res["eps_inf"] for e in strains)
     assert max(strains) - min(strains) < 0.1 * max(strains)
+
+
+# ---------------------------------------------------------------- swelling_test.py --dim 3
+
+def _swelling_test(tmp_path, *args):
+    import os
+    import subprocess
+    from conftest import LAUNCHER, REPO, build_dir
+    env = {**os.environ, "SWELLDEM_BUILD_DIR": build_dir()}
+    return subprocess.run([LAUNCHER, "-j", "1", "-n", "-x", os.path.join(REPO, "scripts", "swelling_test.py"), *args,
+                           "--out", str(tmp_path / "run")], capture_output=True, text=True, timeout=900, env=env)
+
+
+def test_the_swelling_test_of_a_3d_box_records_x_y_z_and_the_volume(tmp_path):
+    import csv
+    import json
+    p = _swelling_test(tmp_path, "--dim", "3", "--size-mm", "10", "10", "10", "--solver", "adr", "--aggregate-area-fraction", "0",
+                       "--behaviour", "elastic", "--no-damage", "--steps-per-decade", "1")
+    assert p.returncode == 0, p.stdout[-3000:] + p.stderr[-3000:]
+    res = json.load(open(tmp_path / "run" / "results.json"))
+    assert res["dim"] == 3 and res["status"] == "finished" and "swelling_strain_area" not in res
+    ex, ey, ez, ev = (res[f"swelling_strain_{k}"][-1] for k in ("x", "y", "z", "volume"))
+    print("measured strains", ex, ey, ez, ev, "eps_inf", res["config"]["eps_inf"])
+    # plain mortar, elastic, free: an isotropic expansion of the order of eps_inf (the 2D micro-macro
+    # rule d_inf = eps_inf 2 R_mean; measured 0.97-0.99 eps_inf), the volume change the product's
+    assert all(0.8 * 1e-3 < e < 1.2 * 1e-3 for e in (ex, ey, ez))
+    assert ev == pytest.approx((1 + ex) * (1 + ey) * (1 + ez) - 1, rel=0.02)
+    with open(tmp_path / "run" / "curves.csv") as f:
+        header = next(csv.reader(f))
+    assert "swelling_strain_z [-]" in header and "swelling_strain_volume [-]" in header
+    assert not (tmp_path / "run" / "crack_map.png").exists()
+    assert "z " in p.stdout and "3D" in open(tmp_path / "run" / "table.md").read()
+    # ParaView: the spheres as points with their arrays as point data, the contacts with both shears
+    import glob
+    from conftest import read_vtp
+    last = sorted(glob.glob(str(tmp_path / "run" / "vtk" / "particles_*.vtp")))[-1]
+    poly, _, pts, field = read_vtp(last)
+    assert poly.GetNumberOfPoints() == res["n_particles"] == poly.GetNumberOfVerts()
+    for name, comps in (("displacement", 3), ("radius", 1), ("stress", 9), ("meanStress", 1), ("damage", 1)):
+        assert name in pts and (pts[name].shape[1] if pts[name].ndim == 2 else 1) == comps, name
+    centre = np.array([poly.GetPoint(k) for k in range(poly.GetNumberOfPoints())])
+    assert np.ptp(centre[:, 2]) > 0.9e-2                           # the box's depth, not a plane
+    # the displacement field is the swelling: z displacement across the depth ~ the z strain
+    slope = np.polyfit(centre[:, 2], pts["displacement"][:, 2], 1)[0]
+    assert slope == pytest.approx(ez, rel=0.05)
+    _, cells, _, _ = read_vtp(last.replace("particles_", "contacts_"))
+    assert "Fs2" in cells and len(cells["Fs2"]) == sum(res["n_contacts_by_kind"].values())
+
+
+@pytest.mark.parametrize("args, message", [
+    (("--dim", "3", "--size-mm", "30", "30", "30"), "swelldem: solver = 'implicit' is out of range; allowed: adr when dim is 3"),
+    (("--dim", "3", "--size-mm", "30", "30", "--solver", "adr"), "size_mm = "),
+    (("--size-mm", "30", "30", "30"), "size_mm = "),
+    (("--dim", "3", "--size-mm", "30", "30", "30", "--solver", "adr", "--boundary-x", "fixed"),
+     "boundary_x = 'fixed' is out of range; allowed: free when dim is 3"),
+    (("--dim", "4",), "dim = 4 is out of range"),
+])
+def test_what_a_3d_box_does_not_take_is_refused_before_any_work(tmp_path, args, message):
+    p = _swelling_test(tmp_path, *args)
+    assert p.returncode == 2 and message in p.stderr, p.stderr[-2000:]
+    assert not (tmp_path / "run").exists()

@@ -43,6 +43,24 @@ def test_affine_strain_recovers_an_affine_field_exactly():
     assert f["residual_rms"] < 1e-15
 
 
+def test_affine_strain_in_3d_recovers_an_affine_field_exactly():
+    rng = np.random.default_rng(3)
+    X = rng.uniform(0, 0.01, (300, 3))
+    G = np.array([[1.2e-3, 0.3e-3, -0.2e-3], [0.1e-3, -0.4e-3, 0.5e-3], [0.0, 0.2e-3, 0.7e-3]])
+    f = measure.affine_strain(X, X + X @ G.T + np.array([1e-4, -3e-5, 2e-5]))
+    for key, want in (("eps_xx", 1.2e-3), ("eps_yy", -0.4e-3), ("eps_zz", 0.7e-3), ("eps_xy", 0.2e-3),
+                      ("eps_xz", -0.1e-3), ("eps_yz", 0.35e-3), ("eps_vol", 1.5e-3), ("eps_mean", 0.5e-3)):
+        assert f[key] == pytest.approx(want, rel=1e-9), key
+    assert f["rotation"] == pytest.approx([-0.15e-3, -0.1e-3, -0.1e-3], rel=1e-9)
+    assert f["residual_rms"] < 1e-15
+    with pytest.raises(ValueError, match="at least 4"):
+        measure.affine_strain(X[:3], X[:3])
+    with pytest.raises(ValueError, match="coplanar"):
+        flat = X.copy()
+        flat[:, 2] = 0
+        measure.affine_strain(flat, flat)
+
+
 def test_rigid_motion_gives_no_strain():
     X = _cloud(seed=1)
     f = measure.affine_strain(X, _affine(X, np.zeros((2, 2)), (0.3, 0.1), theta=1e-4))
@@ -368,6 +386,27 @@ def test_compatible_swelling_gives_eps_inf_exactly(tmp_path):
     want = eps_inf * (xi(t_end) - xi(t_start))  # 999.976e-6: xi(0.01 d) = 2.4e-5
     assert res["times_days"][-1] == pytest.approx(t_end, rel=1e-12)
     for k in ("eps_final_x", "eps_final_y", "eps_final_side_x", "eps_final_side_y"):
+        assert res[k] == pytest.approx(want, rel=2e-4), k
+    assert abs(res["eps_final_xy"]) < 1e-4 * want
+    assert res["final_fn_over_free_swelling_force"] < 1e-3
+
+
+def test_compatible_swelling_of_a_3d_box_gives_eps_inf_exactly(tmp_path):
+    """The same check on a box of spheres (table_3_2.py --dim 3): d_inf = eps_inf x L on every
+    contact is an affine expansion without force, x, y and z alike."""
+    eps_inf, t_start, t_end, tau_c, tau_l = 1000e-6, 0.01, 3650.0, 50.0, 100.0
+    out = tmp_path / "out"
+    p = subprocess.run([LAUNCHER, "-n", "-x", TABLE_SCRIPT, "--dim", "3", "--size-mm", "8", "8", "8", "--seed", "2",
+                        "--steps-per-decade", "3", "--case", "isr", "--eps-inf", repr(eps_inf), "--t-start", repr(t_start),
+                        "--d-inf-rule", "contact-length", "--out", str(out)], capture_output=True, text=True, timeout=600,
+                       env={**os.environ, "SWELLDEM_BUILD_DIR": build_dir()})
+    assert p.returncode == 0, p.stdout[-3000:] + p.stderr[-3000:]
+    res = json.loads((out / "results.json").read_text())
+    xi = lambda t: (1 - math.exp(-t / tau_c)) / (1 + math.exp(-(t - tau_l) / tau_c))
+    want = eps_inf * (xi(t_end) - xi(t_start))
+    assert res["dim"] == 3 and res["eps_final_side"] is None
+    print("measured", [res[k] / want - 1 for k in ("eps_final_x", "eps_final_y", "eps_final_z")], res["final_fn_over_free_swelling_force"])
+    for k in ("eps_final_x", "eps_final_y", "eps_final_z"):
         assert res[k] == pytest.approx(want, rel=2e-4), k
     assert abs(res["eps_final_xy"]) < 1e-4 * want
     assert res["final_fn_over_free_swelling_force"] < 1e-3

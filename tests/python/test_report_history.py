@@ -66,3 +66,21 @@ def test_history_off(yade_run):
     res = yade_run(swelling_pair(SOLVERS["adr"].format(every=0)) + RUN, threads=1)
     assert res["iteration"] == [] and res["ratio"] == []
     assert sum(res["step_iterations"]) == res["total"] > 0
+
+
+def test_a_step_at_round_off_is_marked_with_its_limit(yade_run):
+    """A step of the implicit solver that ends above its tolerance (1e-10) ends at the positions'
+    round-off limit: it is marked (stepRoundOff), its limit recorded (stepRoundOffRatio), and its
+    ratio is at or below that limit."""
+    res = yade_run(swelling_pair(SOLVERS["implicit"].format(every=20)) + r"""
+while not solver.finished:
+    O.run(1000, True)
+dump({"round_off": list(solver.stepRoundOff), "limit": list(solver.stepRoundOffRatio), "ratio": list(solver.stepUnbalanced),
+      "tolerance": solver.tolerance})
+""", threads=1)
+    n = len(res["ratio"])
+    assert n > 0 and len(res["limit"]) == n == len(res["round_off"]) and any(res["round_off"])
+    for ro, limit, ratio in zip(res["round_off"], res["limit"], res["ratio"]):
+        assert limit > 0
+        if ro:
+            assert res["tolerance"] < ratio <= limit

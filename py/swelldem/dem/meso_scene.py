@@ -61,9 +61,11 @@ class YadeScene:
         return yade.Omega().interactions[int(i), int(j)]
 
     def positions(self):
-        """Current (n, 2) centre positions of the particles [m]."""
+        """Current centre positions of the particles [m]: (n, 2) of a 2D scene, (n, 3) of a 3D one."""
         yade, _ = _yade()
         O = yade.Omega()
+        if self.counts.get("dim", 2) == 3:
+            return np.array([list(O.bodies[int(i)].state.pos) for i in self.ids])
         return np.array([[O.bodies[int(i)].state.pos[0], O.bodies[int(i)].state.pos[1]] for i in self.ids])
 
 

@@ -96,10 +96,11 @@ class StepRecorder:
     def __init__(self, assembly, yscene, solver, res, out, vtk_every=0, platens=None, bars=None, save_state=False, resuming=False):
         self.a, self.ys, self.solver, self.res, self.out, self.vtk_every = assembly, yscene, solver, res, out, vtk_every
         self.platens, self.bars, self.save_state = platens, bars, save_state
-        self.ref = np.column_stack([assembly.x, assembly.y])
-        # Strain of the load-bearing skeleton: discs with fewer than 2 contacts (held by the
-        # specimen's sides during packing) are loose in a free specimen and do not follow it.
-        self.weights = np.where(assembly.coordination() >= 2, assembly.r ** 2, 0.0)
+        self.dim = getattr(assembly, "dim", 2)
+        self.ref = np.column_stack([assembly.x, assembly.y] + ([assembly.z] if self.dim == 3 else []))
+        # Strain of the load-bearing skeleton: particles with fewer contacts than dimensions (held by
+        # the specimen's sides during packing) are loose in a free specimen and do not follow it.
+        self.weights = np.where(assembly.coordination() >= self.dim, assembly.r ** self.dim, 0.0)
         self.t0 = time.time()
         self.bonded = bonded_pairs()
         self.vtk = None if resuming else self._vtk_series()
@@ -115,6 +116,8 @@ class StepRecorder:
         res["tensile_capacity_kN"] = tensile_capacity()
 
     def _vtk_series(self, keep_before=0):
+        if self.dim == 3:
+            return VtkSeries(os.path.join(self.out, "vtk"), self.bonded, keep_before=keep_before, cell_volume=self.a.cell_volume_m3)
         return VtkSeries(os.path.join(self.out, "vtk"), self.bonded, cell_area=self.a.cell_area_m2, thickness=self.a.thickness_m,
                          keep_before=keep_before)
 
@@ -151,8 +154,14 @@ class StepRecorder:
         r["times_days"].append(solver.physTime)
         r["swelling_strain_x"].append(s["eps_xx"])
         r["swelling_strain_y"].append(s["eps_yy"])
-        # the area change of the affine fit, det(I + grad u) - 1 (exact, not the small-strain e_xx + e_yy)
-        r["swelling_strain_area"].append(float(np.linalg.det(np.eye(2) + np.asarray(s["gradient"]))) - 1)
+        # the area (3D: volume) change of the affine fit, det(I + grad u) - 1 (exact, not the
+        # small-strain trace)
+        change = float(np.linalg.det(np.eye(self.dim) + np.asarray(s["gradient"]))) - 1
+        if self.dim == 3:
+            r["swelling_strain_z"].append(s["eps_zz"])
+            r["swelling_strain_volume"].append(change)
+        else:
+            r["swelling_strain_area"].append(change)
         for axis in ("x", "y"):
             r[f"platen_stress_{axis}_Pa"].append(self.platens.stress(axis) if self.platens else 0.0)
             r[f"platen_disp_{axis}_m"].append(self.platens.displacement(axis) if self.platens else 0.0)
@@ -165,6 +174,8 @@ class StepRecorder:
         r["iterations_per_step"].append(int(solver.stepIterations[-1]))
         round_off = getattr(solver, "stepRoundOff", None)  # a solver without a round-off stop has none
         r["step_at_round_off"].append(bool(round_off[-1]) if round_off else False)
+        limit = getattr(solver, "stepRoundOffRatio", None)
+        r.setdefault("round_off_ratio", []).append(float(limit[-1]) if limit else float("nan"))
         for k, name in enumerate(KIND_NAMES):
             sel = kind == k
             q05, q95 = (np.quantile(fn[sel], [0.05, 0.95]) / 1e3).tolist() if sel.any() else (float("nan"),) * 2
@@ -222,7 +233,7 @@ class StepRecorder:
         """The VTK files of the last recorded step, unless already written (the run's end exports
         its last step whatever vtk_every)."""
         step = len(self.res["times_days"]) - 1
-        if step >= 0 and not self.vtk.exported(step):
+        if self.vtk is not None and step >= 0 and not self.vtk.exported(step):
             self.vtk.export(step, self.res["times_days"][step])
 
 

@@ -24,6 +24,11 @@ contacts_<step>.vtp: one line cell per real interaction, between the two disc ce
   broken [-] 0/1; failureMode [-] 0 intact, 1 tension, 2 shear; bonded [-] 1 for a contact bonded at
   the start of the run, 0 for one made during it; crackOpening [m] of a broken contact, FnHat / kn
   (the normal opening beyond its stress-free state; 0 when closed or intact).
+A 3D box (VtkSeries with cell_volume): particles_<step>.vtp holds one vertex a sphere at its
+centre (double precision) and every array as point data, the ones above (stress in 3D, V the
+sphere's power cell volume; meanStress the trace / 3) and radius [m] for ParaView's Glyph filter
+(a sphere scaled by radius); contacts_<step>.vtp holds the same arrays as a section's, the centres
+in 3D, and Fs2 [N], the shear along the contact's second tangent.
 Platens (swelldem.dem.platens) and their contacts are left out of the drawing (their stress is in
 results.json); their forces on the discs count in the discs' stress.
 Field data of both: TimeValue [day], step [-] (index into results.json's times_days), kindNames
@@ -78,7 +83,7 @@ def write_polydata(path, points, cell_type, offsets, connectivity, cell_data=(),
                    point_type=np.float64):
     """One VTK XML PolyData file, binary with zlib-compressed appended data.
 
-    points: (n, 3) [m], stored as point_type; cell_type: 'Polys' or 'Lines'; offsets (cells + 1, from 0), connectivity:
+    points: (n, 3) [m], stored as point_type; cell_type: 'Polys', 'Lines' or 'Verts'; offsets (cells + 1, from 0), connectivity:
     VTK's cell arrays; cell_data, point_data: (name, numpy dtype, values (n,) or (n, k)) tuples, or
     (name, str, list of strings) for a string array; time_days [day] and step [-] go into the field
     data with the kind name table. Written to a temporary file, then renamed: a reader never sees
@@ -91,6 +96,8 @@ def write_polydata(path, points, cell_type, offsets, connectivity, cell_data=(),
     cells = cell_array(vtk, offsets, connectivity)
     if cell_type == "Polys":
         poly.SetPolys(cells)
+    elif cell_type == "Verts":
+        poly.SetVerts(cells)
     else:
         poly.SetLines(cells)
     for target, arrays in ((poly.GetCellData(), cell_data), (poly.GetPointData(), point_data)):
@@ -127,8 +134,10 @@ def _pair(i):
     return (i.id1, i.id2) if i.id1 < i.id2 else (i.id2, i.id1)
 
 
-def disc_state(discs, cell_area=None, thickness=1.0, bonded=None):
+def disc_state(discs, cell_area=None, thickness=1.0, bonded=None, cell_volume=None):
     """Per disc of `discs` (YADE bodies): (stress (n, 3, 3) [Pa], damage (n,) [-], bonded contacts (n,)).
+    With cell_volume [m3] by body id (a 3D box's assembly.cell_volume_m3) the particles are spheres:
+    the sums run in three dimensions and V is the sphere's power cell volume ((2 r)^3 beyond it).
 
     stress: Love-Weber's mean stress of the disc, sigma = (1/V) sum_c f_c (x) l_c (sigma_ij = (1/V)
     sum_c f_i l_j) over its real interactions, f_c the contact's force on the disc (normal and
@@ -145,13 +154,20 @@ def disc_state(discs, cell_area=None, thickness=1.0, bonded=None):
     O = yade.Omega()
     index = {b.id: k for k, b in enumerate(discs)}
     n = len(discs)
-    pos = np.array([[float(b.state.pos[0]), float(b.state.pos[1])] for b in discs]).reshape(n, 2)
+    d = 2 if cell_volume is None else 3
+    pos = np.array([[float(b.state.pos[k]) for k in range(d)] for b in discs]).reshape(n, d)
     radius = np.array([float(b.shape.radius) for b in discs])
-    area = (2 * radius) ** 2
-    if cell_area is not None:
-        ids = np.array([b.id for b in discs], dtype=int)
-        have = ids < len(cell_area)
-        area[have] = np.asarray(cell_area, dtype=float)[ids[have]]
+    ids = np.array([b.id for b in discs], dtype=int)
+    if d == 3:
+        volume = (2 * radius) ** 3
+        have = ids < len(cell_volume)
+        volume[have] = np.asarray(cell_volume, dtype=float)[ids[have]]
+    else:
+        area = (2 * radius) ** 2
+        if cell_area is not None:
+            have = ids < len(cell_area)
+            area[have] = np.asarray(cell_area, dtype=float)[ids[have]]
+        volume = area * thickness
     total = np.zeros(n, dtype=int)
     intact = np.zeros(n, dtype=int)
     whole = set()  # unbroken pairs of discs
@@ -160,13 +176,13 @@ def disc_state(discs, cell_area=None, thickness=1.0, bonded=None):
         if not i.isReal:
             continue
         f = i.phys.normalForce + i.phys.shearForce  # the law's force on id2; on id1 its opposite
-        fx, fy = float(f[0]), float(f[1])
-        cp = (float(i.geom.contactPoint[0]), float(i.geom.contactPoint[1]))
+        fc = [float(f[k]) for k in range(d)]
+        cp = [float(i.geom.contactPoint[k]) for k in range(d)]
         for body, sign in ((i.id1, -1.0), (i.id2, 1.0)):
             k = index.get(body)
             if k is not None:
                 side.append(k)
-                force.append((sign * fx, sign * fy))
+                force.append([sign * v for v in fc])
                 point.append(cp)
         if i.id1 in index and i.id2 in index:
             if bonded is None:
@@ -181,14 +197,32 @@ def disc_state(discs, cell_area=None, thickness=1.0, bonded=None):
                 total[index[body]] += 1
                 intact[index[body]] += (a, b) in whole
     side = np.array(side, dtype=int)
-    force, branch = np.array(force).reshape(-1, 2), np.array(point).reshape(-1, 2) - pos[side]
-    moment = np.zeros((n, 2, 2))
+    force, branch = np.array(force).reshape(-1, d), np.array(point).reshape(-1, d) - pos[side]
+    moment = np.zeros((n, d, d))
     np.add.at(moment, side, force[:, :, None] * branch[:, None, :])
-    sym = 0.5 * (moment + moment.transpose(0, 2, 1)) / (area * thickness)[:, None, None]
+    sym = 0.5 * (moment + moment.transpose(0, 2, 1)) / volume[:, None, None]
     stress = np.zeros((n, 3, 3))
-    stress[:, :2, :2] = sym
+    stress[:, :d, :d] = sym
     damage = np.where(total > 0, (total - intact) / np.maximum(total, 1), 0.0)
     return stress, damage, total
+
+
+def sphere_points(cell_volume, bonded=None):
+    """Points, offsets, connectivity, cell data and point data of the spheres of a 3D box in O: one
+    vertex a sphere at its centre, every array as point data (ParaView's Glyph, a sphere scaled by
+    `radius`, draws them); cell_volume, bonded: see disc_state."""
+    yade, _ = _yade()
+    spheres = [b for b in yade.Omega().bodies if b is not None and _is_disc(b)]
+    n = len(spheres)
+    centre = np.array([[float(v) for v in b.state.pos] for b in spheres]).reshape(n, 3)
+    displ = np.array([[float(v) for v in b.state.displ()] for b in spheres]).reshape(n, 3)
+    stress, damage, total = disc_state(spheres, bonded=bonded, cell_volume=cell_volume)
+    point_data = [("id", np.int32, [b.id for b in spheres]), ("radius", np.float64, [float(b.shape.radius) for b in spheres]),
+                  ("aggregateId", np.int32, [int(getattr(b.material, "aggregateId", -1)) for b in spheres]),
+                  ("displacement", np.float64, displ), ("stress", np.float64, stress.reshape(n, 9)),
+                  ("meanStress", np.float64, np.trace(stress, axis1=1, axis2=2) / 3),
+                  ("damage", np.float64, damage), ("bondedContacts", np.int32, total)]
+    return centre, np.arange(n + 1), np.arange(n), [], point_data
 
 
 def particle_cells(sides=DISC_SIDES, cell_area=None, thickness=1.0, bonded=None):
@@ -215,10 +249,11 @@ def particle_cells(sides=DISC_SIDES, cell_area=None, thickness=1.0, bonded=None)
     return points.reshape(-1, 3), offsets, np.arange(n * sides), cells, point_data
 
 
-def contact_cells(bonded=None):
+def contact_cells(bonded=None, dim=2):
     """Points (all disc centres), offsets, connectivity, cell data and point data of the real
     interactions of O as lines; bonded: the (id1, id2) pairs (id1 < id2) bonded at the start
-    (recorder.bonded_pairs(); None: all)."""
+    (recorder.bonded_pairs(); None: all). dim 3: the centres in 3D and the shear's second
+    component Fs2 [N] beside Fs."""
     yade, _ = _yade()
     O = yade.Omega()
     index, points, pid, displ = {}, [], [], []
@@ -226,11 +261,12 @@ def contact_cells(bonded=None):
         if b is None or not _is_disc(b):
             continue
         index[b.id] = len(points)
-        points.append((float(b.state.pos[0]), float(b.state.pos[1]), 0.0))
+        points.append((float(b.state.pos[0]), float(b.state.pos[1]), float(b.state.pos[2]) if dim == 3 else 0.0))
         pid.append(b.id)
         displ.append([float(v) for v in b.state.displ()])
-    conn, cols = [], {k: [] for k in ("kindId", "kind", "Fn", "Fs", "area", "strength", "FnOverStrength", "broken",
-                                      "failureMode", "bonded", "crackOpening")}
+    names = ("kindId", "kind", "Fn", "Fs") + (("Fs2",) if dim == 3 else ()) + (
+        "area", "strength", "FnOverStrength", "broken", "failureMode", "bonded", "crackOpening")
+    conn, cols = [], {k: [] for k in names}
     for i in O.interactions:
         if not i.isReal or i.id1 not in index or i.id2 not in index:  # platen contacts: results.json has their stress
             continue
@@ -242,6 +278,8 @@ def contact_cells(bonded=None):
         cols["kind"].append(KIND_BY_ID.get(int(p.kindId), str(p.kindId)))
         cols["Fn"].append(fn)
         cols["Fs"].append(float(p.Fs))
+        if dim == 3:
+            cols["Fs2"].append(float(p.Fs2))
         cols["area"].append(float(p.area))
         cols["strength"].append(fn_max if has_strength else 0.0)
         cols["FnOverStrength"].append(fn / fn_max if has_strength else 0.0)
@@ -264,9 +302,9 @@ class VtkSeries:
     the series goes on (a resumed run). bonded: see contact_cells; sides: of each disc's polygon; cell_area [m2] by body id and
     thickness [m]: the discs' volumes for their stress (disc_state; a run passes its assembly's)."""
 
-    def __init__(self, vtk_dir, bonded=None, sides=DISC_SIDES, cell_area=None, thickness=1.0, keep_before=0):
+    def __init__(self, vtk_dir, bonded=None, sides=DISC_SIDES, cell_area=None, thickness=1.0, keep_before=0, cell_volume=None):
         self.dir, self.bonded, self.sides = vtk_dir, bonded, sides
-        self.cell_area, self.thickness = cell_area, thickness
+        self.cell_area, self.thickness, self.cell_volume = cell_area, thickness, cell_volume
         self.entries = []  # (step, time [day])
         os.makedirs(vtk_dir, exist_ok=True)
         if keep_before:
@@ -286,12 +324,17 @@ class VtkSeries:
     def export(self, step, time_days):
         """Writes the scene of O now as step `step` at physical time time_days [day]."""
         name = f"{step:05d}.vtp"
-        pts, offs, conn, cells, pdata = particle_cells(self.sides, self.cell_area, self.thickness, self.bonded)
-        # the polygons are a drawing: single precision (a third of the file less; the centres are
-        # exact in the contacts' file, the displacements in both)
-        write_polydata(os.path.join(self.dir, "particles_" + name), pts, "Polys", offs, conn, cells, pdata,
-                       time_days=time_days, step=step, point_type=np.float32)
-        pts, offs, conn, cells, pdata = contact_cells(self.bonded)
+        if self.cell_volume is not None:  # a 3D box: spheres as points
+            pts, offs, conn, cells, pdata = sphere_points(self.cell_volume, self.bonded)
+            write_polydata(os.path.join(self.dir, "particles_" + name), pts, "Verts", offs, conn, cells, pdata,
+                           time_days=time_days, step=step)
+        else:
+            pts, offs, conn, cells, pdata = particle_cells(self.sides, self.cell_area, self.thickness, self.bonded)
+            # the polygons are a drawing: single precision (a third of the file less; the centres are
+            # exact in the contacts' file, the displacements in both)
+            write_polydata(os.path.join(self.dir, "particles_" + name), pts, "Polys", offs, conn, cells, pdata,
+                           time_days=time_days, step=step, point_type=np.float32)
+        pts, offs, conn, cells, pdata = contact_cells(self.bonded, 3 if self.cell_volume is not None else 2)
         write_polydata(os.path.join(self.dir, "contacts_" + name), pts, "Lines", offs, conn, cells, pdata,
                        time_days=time_days, step=step)
         self.entries.append((step, float(time_days)))
