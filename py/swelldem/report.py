@@ -419,10 +419,45 @@ def plot_strain(path, res):
     ax.semilogx(t, np.array(res["swelling_strain_y"]) * 1e6, "s-", ms=3, label="specimen, y")
     if "swelling_strain_z" in res:
         ax.semilogx(t, np.array(res["swelling_strain_z"]) * 1e6, "^-", ms=3, label="specimen, z")
-    ax.set(xlabel="time [day]", ylabel="swelling strain [1e-6]", title=_title(res))
+    loaded = _structures(res)
+    # under platens, an applied stress or bars the specimen's strain is the swelling's and the load's
+    ylabel = "strain of the specimen (swelling and load) [1e-6]" if loaded else "swelling strain [1e-6]"
+    ax.set(xlabel="time [day]", ylabel=ylabel, title=_title(res))
     ax.grid(True, which="both", lw=0.3)
     if len(t):
         _free_swelling_curve(ax, res, t[-1], _max(res["swelling_strain_x"], res["swelling_strain_y"]))
+    _save(fig, path)
+
+
+def _structures(res):
+    """The run's structures that load the specimen: platen axes (boundary other than free) and bars."""
+    cfg = res.get("config") or {}
+    axes = [a for a in ("x", "y") if cfg.get(f"boundary_{a}", "free") != "free"]
+    return axes + (["bars"] if res.get("rebar") else [])
+
+
+def plot_structure_stress(path, res):
+    """structure_stress.png of a run with platens or bars: the platens' mean normal stress on the
+    specimen per axis and the bars' largest and mean axial stress against time [MPa], compression
+    negative, with the bars' yield stress."""
+    plt = _plt()
+    t = np.array(res["times_days"])
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    cfg = res.get("config") or {}
+    for axis in ("x", "y"):
+        if cfg.get(f"boundary_{axis}", "free") != "free":
+            ax.semilogx(t, np.array(res[f"platen_stress_{axis}_Pa"]) / 1e6, "o-", ms=3,
+                        label=f"platens on the {axis} sides ({cfg[f'boundary_{axis}']}): mean normal stress")
+    if res.get("rebar"):
+        bar = res["rebar"]
+        ax.semilogx(t, np.array(res["rebar_stress_max_Pa"]) / 1e6, "s-", ms=3, color="tab:red",
+                    label=f"bars ({100 * bar['ratio']:g} %, {bar['n_bars']}): largest axial stress")
+        ax.semilogx(t, np.array(res["rebar_stress_mean_Pa"]) / 1e6, "s--", ms=3, mfc="none", color="tab:red", label="bars: mean axial stress")
+        ax.axhline(bar["yield_stress_Pa"] / 1e6, color="k", lw=0.8, ls=":", label=f"steel yield stress {bar['yield_stress_Pa'] / 1e6:g} MPa")
+    ax.axhline(0, color="0.5", lw=0.5)
+    ax.set(xlabel="time [day]", ylabel="stress [MPa] (tension > 0)", title=_title(res))
+    ax.grid(True, which="both", lw=0.3)
+    ax.legend(fontsize=7)
     _save(fig, path)
 
 
@@ -477,10 +512,13 @@ def plot_forces(path, res):
 
 
 def plot_curves(out, res):
-    """swelling_strain.png, unbalanced.png and force_quantiles.png of one run in `out`."""
+    """swelling_strain.png, unbalanced.png and force_quantiles.png of one run in `out`, and
+    structure_stress.png when platens or bars load it."""
     plot_strain(os.path.join(out, "swelling_strain.png"), res)
     plot_unbalanced(os.path.join(out, "unbalanced.png"), res)
     plot_forces(os.path.join(out, "force_quantiles.png"), res)
+    if _structures(res):
+        plot_structure_stress(os.path.join(out, "structure_stress.png"), res)
 
 
 def plot_crack_map(out, res, assembly, broken_contacts, step=-1, name="crack_map.png"):

@@ -91,7 +91,7 @@ def test_curves_csv_holds_every_per_step_series_of_results_json(reference):
     expected = {"t [d]": res["times_days"], "swelling_strain_x [-]": res["swelling_strain_x"],
                 "swelling_strain_y [-]": res["swelling_strain_y"], "swelling_strain_area [-]": res["swelling_strain_area"],
                 "unbalanced_ratio [-]": res["unbalanced_ratio"], "iterations [-]": res["iterations_per_step"],
-                "step_at_round_off [-]": [int(v) for v in res["step_at_round_off"]]}
+                "step_at_round_off [-]": [int(v) for v in res["step_at_round_off"]], "round_off_ratio [-]": res["round_off_ratio"]}
     for kind in ("MORTAR", "ITZ", "AGG"):
         d = res["per_kind"][kind]
         expected.update({f"{kind} fn_p05 [kN]": d["fn_p05_kN"], f"{kind} fn_p95 [kN]": d["fn_p95_kN"],

@@ -144,6 +144,10 @@ def test_swelling_test_with_platens_on_both_axes(tmp_path):
     # area strain against the strains along the axes: (1 + ex)(1 + ey) - 1 up to the shear term
     ex, ey, area = (np.array(r[k]) for k in ("swelling_strain_x", "swelling_strain_y", "swelling_strain_area"))
     assert np.allclose(area, (1 + ex) * (1 + ey) - 1, atol=1e-6)
+    # the platens' stresses drawn, and the condition named in the table, without the paper's values
+    assert (out / "structure_stress.png").exists()
+    table = (out / "table.md").read_text()
+    assert "Conditions: x sides fixed; y sides stress:-5e6" in table and "the paper's values are not set beside it" in table
 
 
 @pytest.mark.parametrize("value", ["clamped", "stress:-inf", "spring:0"])

@@ -98,6 +98,7 @@ def test_bars_restrain_the_expansion_along_them_and_carry_tension(tmp_path):
             head, *rows = list(csv.reader(f))
         assert [float(row[head.index("rebar_stress_max [Pa]")]) for row in rows] == list(smax)
         assert [float(row[head.index("rebar_stress_mean [Pa]")]) for row in rows] == list(smean)
+        assert (tmp_path / f"rho{rho}" / "structure_stress.png").exists()  # the bars' stresses drawn
         # the mean stress is E_s times the bar's elongation over its length, which cannot much exceed
         # the free expansion of the concrete it is bonded to: the bar line's own elongation against
         # the specimen's affine fit, measured 1.04 times it for the softest bar (bound 1.15)
