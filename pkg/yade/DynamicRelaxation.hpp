@@ -31,7 +31,6 @@ public:
 	/// A new physical step starts from rest.
 	void rest() { std::fill(prevForce.begin(), prevForce.end(), 0.0); }
 	void computeMasses(const Scene* scene, Real massSafety);
-	void computeMasses3d(const Scene* scene, Real massSafety);
 	/// Adds a stiffness k [N/m] acting on one body's axis (a spring) to its mass, as computeMasses does for contacts.
 	void addStiffness(const Scene* scene, Real massSafety, int id, int axis, Real k)
 	{
