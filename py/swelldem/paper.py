@@ -144,11 +144,3 @@ def larive_xi_under(t, tau_c, tau_l, days=(), temperatures_K=(), T0=LARIVE_T0, U
     flat = t.ravel()
     sol = solve_ivp(rate, (0.0, float(flat.max(initial=0.0))), [0.0], method="LSODA", rtol=1e-10, atol=1e-12, dense_output=True)
     return np.clip(sol.sol(flat)[0], 0.0, 1.0).reshape(t.shape)
-
-
-def free_swelling(t, scenario, eps_inf=EPS_INF, t_start=1.0):
-    """Free swelling strain [-] of the swelling phase of `scenario` (a SCENARIOS key) at times t
-    [day] since the stress-free state at t_start [day]: eps_inf (xi(t) - xi(t_start)) with the
-    scenario's Larive kinetics, what an unrestrained swelling contact reaches."""
-    kinetics = SCENARIOS[scenario]["kinetics"]
-    return eps_inf * (larive_xi(t, kinetics) - larive_xi(t_start, kinetics))

@@ -12,7 +12,7 @@ import numpy as np
 
 from .paper import (BEHAVIOUR_KEYS, BEHAVIOUR_WORDS, EPS_INF, KIND_NAMES, KINETICS, LARIVE_T0, LARIVE_UC, LARIVE_UL, SCENARIOS,
                     SPECIMEN_SIZE_MM, larive_xi_under,
-                    TABLE_FORCES, VARIATION, free_swelling)
+                    TABLE_FORCES, VARIATION)
 
 LABEL = {"isr": "ISR", "asr-fine": "ASR-fine agg.", "asr-coarse": "ASR-coarse agg."}
 COLORS = {"MORTAR": "tab:blue", "ITZ": "tab:red", "AGG": "tab:green"}

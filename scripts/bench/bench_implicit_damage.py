@@ -24,7 +24,6 @@ import time
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(REPO, "py"))
-import numpy as np  # noqa: E402
 
 from swelldem import dem, options, paper, scenario  # noqa: E402
 from swelldem.dem import recorder  # noqa: E402
@@ -75,9 +74,7 @@ def main(argv):
     kind, _, broken, was_bonded = recorder.contact_arrays(bonded)
     pct = {n: round(100.0 * float((broken & was_bonded & (kind == k)).sum()) / max(int((kind0 == k).sum()), 1), 2)
            for k, n in enumerate(paper.KIND_NAMES)}
-    xyz = [assembly.x, assembly.y] + ([assembly.z] if a.dim == 3 else [])
-    strain = affine_strain(np.column_stack(xyz), ys.positions(),
-                           weights=np.where(assembly.coordination() >= a.dim, assembly.r ** a.dim, 0.0))
+    strain = affine_strain(recorder.reference_positions(assembly), ys.positions(), weights=recorder.skeleton_weights(assembly))
     result = {
         "scenario": a.scenario, "behaviour": a.behaviour, "size_mm": list(a.size_mm), "seed": a.seed, "solver": a.solver,
         "break_rule": a.break_rule, "status": status, "iterations": solver.totalIterations, "wall_s": round(wall, 2),

@@ -75,6 +75,19 @@ def tensile_capacity():
             for k, v in cap.items()}
 
 
+def reference_positions(assembly):
+    """The particles' centres as the assembly made them: (n, 2), or (n, 3) for a 3D box [m]."""
+    return np.column_stack([assembly.x, assembly.y] + ([assembly.z] if getattr(assembly, "dim", 2) == 3 else []))
+
+
+def skeleton_weights(assembly):
+    """Weights of the specimen's strain fit (measure.affine_strain): the particle's area (volume in
+    3D) up to a constant, 0 for a particle with fewer contacts than dimensions: one held by the
+    specimen's sides during packing is loose in a free specimen and does not follow it."""
+    dim = getattr(assembly, "dim", 2)
+    return np.where(assembly.coordination() >= dim, assembly.r ** dim, 0.0)
+
+
 class StepRecorder:
     """Per converged physical step, appends to the results dict `res`: time [day], the swelling
     strains (affine fit of the skeleton's displacements: x, y and area), the platens' stress [Pa] and
@@ -97,10 +110,8 @@ class StepRecorder:
         self.a, self.ys, self.solver, self.res, self.out, self.vtk_every = assembly, yscene, solver, res, out, vtk_every
         self.platens, self.bars, self.save_state = platens, bars, save_state
         self.dim = getattr(assembly, "dim", 2)
-        self.ref = np.column_stack([assembly.x, assembly.y] + ([assembly.z] if self.dim == 3 else []))
-        # Strain of the load-bearing skeleton: particles with fewer contacts than dimensions (held by
-        # the specimen's sides during packing) are loose in a free specimen and do not follow it.
-        self.weights = np.where(assembly.coordination() >= self.dim, assembly.r ** self.dim, 0.0)
+        self.ref = reference_positions(assembly)
+        self.weights = skeleton_weights(assembly)
         self.t0 = time.time()
         self.bonded = bonded_pairs()
         self.vtk = None if resuming else self._vtk_series()
@@ -233,7 +244,7 @@ class StepRecorder:
         """The VTK files of the last recorded step, unless already written (the run's end exports
         its last step whatever vtk_every)."""
         step = len(self.res["times_days"]) - 1
-        if self.vtk is not None and step >= 0 and not self.vtk.exported(step):
+        if step >= 0 and not self.vtk.exported(step):
             self.vtk.export(step, self.res["times_days"][step])
 
 
