@@ -13,14 +13,33 @@ namespace yade {
 namespace core = swelldem::core;
 using Vector2r = Eigen::Matrix<Real, 2, 1>;
 
+namespace {
+	// Lower-triangle index pairs (row a >= column b) of a contact's n x n block over its DOFs (body
+	// 1's, then body 2's): n = 6 in 2D (x, y, rz each), 12 in 3D (x, y, z, rx, ry, rz each).
+	struct PairTable {
+		int n, size, a[78], b[78];
+		explicit PairTable(int blockSize)
+		    : n(blockSize)
+		    , size(0)
+		{
+			for (int j = 0; j < n; ++j)
+				for (int i = j; i < n; ++i)
+					a[size] = i, b[size] = j, ++size;
+		}
+	};
+	const PairTable kPairs2D(6), kPairs3D(12);
+}
+
 struct ImplicitLinearSystem {
 	using SpMat = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
-	std::vector<int>                                   dofOf;      // 3 x body id + axis (x, y, rotation z) -> equation, -1 if held
-	std::vector<unsigned>                              dofMasks;   // blocked x, y, rz of each body when dofOf was made
+	int                                                nb = 3;     // DOFs a body: 2D x, y, rz; 3D x, y, z, rx, ry, rz
+	const PairTable*                                   pairs = &kPairs2D; // of a contact's 2 nb x 2 nb block
+	std::vector<int>                                   dofOf;      // nb x body id + axis -> equation, -1 if held
+	std::vector<unsigned>                              dofMasks;   // blocked DOFs of each body when dofOf was made
 	std::vector<std::pair<int, int>>                   graph;      // the real contacts the pattern was made for
-	std::vector<int>                                   slots;      // per contact, the 21 entries of its 6 x 6 lower triangle (-1: held)
+	std::vector<int>                                   slots;      // per contact, the entries of its block's lower triangle (-1: held)
 	std::vector<int>                                   diagSlot;   // per equation
-	std::vector<char>                                  isRotation; // per equation: a rotation z
+	std::vector<char>                                  isRotation; // per equation: a rotation
 	double                                             rotationScale = 0; // median diagonal of the rotations, this assembly's
 	std::vector<char>                                  active;     // per contact: its core::ContactLaw::Mode
 	SpMat                                              K;
@@ -38,17 +57,19 @@ struct ImplicitLinearSystem {
 	long                            changed = 0;
 	std::vector<Real>               deltaDiag; // per equation, the diagonal change of the changed contacts
 	std::vector<int>                touched;   // the equations deltaDiag touches
-	// a contact's 6 equations over (x1, y1, rz1, x2, y2, rz2), -1 where held
-	void equationsOf(const Interaction* I, int eq[6]) const
+	int nc() const { return 2 * nb; } // a contact's DOFs
+	// a contact's equations over its DOFs (body 1's, then body 2's), -1 where held and past nc()
+	void equationsOf(const Interaction* I, int eq[LowRankColumn::kSize]) const
 	{
-		for (int d = 0; d < 3; ++d)
-			eq[d] = dofOf[3 * I->id1 + d], eq[3 + d] = dofOf[3 * I->id2 + d];
+		for (int d = 0; d < nb; ++d)
+			eq[d] = dofOf[nb * I->id1 + d], eq[nb + d] = dofOf[nb * I->id2 + d];
+		std::fill(eq + nc(), eq + LowRankColumn::kSize, -1);
 	}
 	void addColumn(const Interaction* I, int type, Real value, const Real* a, const Real* b)
 	{
 		LowRankColumn col { I->id1, I->id2, type, value, {}, {}, {} };
 		equationsOf(I, col.eq);
-		for (int k = 0; k < 6; ++k)
+		for (int k = 0; k < nc(); ++k)
 			col.u[k] = value * a[k], col.v[k] = b[k];
 		columns.push_back(col);
 	}
@@ -62,20 +83,6 @@ struct ImplicitLinearSystem {
 };
 
 namespace {
-	// Lower-triangle index pairs (row a >= column b) of a contact's 6 x 6 block over
-	// (x1, y1, rz1, x2, y2, rz2).
-	struct PairTable {
-		int a[21], b[21];
-		PairTable()
-		{
-			int k = 0;
-			for (int j = 0; j < 6; ++j)
-				for (int i = j; i < 6; ++i)
-					a[k] = i, b[k] = j, ++k;
-		}
-	};
-	const PairTable kPairs;
-
 	// Debian's CHOLMOD opens OpenMP regions of a fixed 4 threads inside its supernodal factorization
 	// (its compile-time CHOLMOD_OMP_NUM_THREADS), whatever YADE's -j says. On this 2-core machine
 	// their barriers took a third of a 100 mm damage run (futex waits); serial, the factorizations
@@ -88,13 +95,18 @@ namespace {
 
 	// A real interaction's tangent and its state (core::ContactLaw::Mode; 0 for a stock contact):
 	// kn, ks [N/m] of the state the contact is in, and for a sliding contact the slope of its shear
-	// force along the Coulomb cone, slide = dFs/d(opening) = -sign(Fs) tan(phi_res) kn [N/m].
+	// force along the Coulomb cone, slide = dFs/d(opening) = -sign(Fs) tan(phi_res) kn [N/m]; in 3D
+	// slide = -tan(phi_res) kn along the shear force's direction (dir: its components on the two
+	// tangents; 2D: 1, 0). A 3D sliding contact's shear enters with no stiffness across that
+	// direction either (the radial return's would be ks |Fs| / |Fs trial|): Newton's residual is
+	// YADE's, so this changes the path, not the equilibrium.
 	// sticking: a sliding contact enters as sticking (the elastic predictor's tangent).
 	// closed: a broken contact taken as closed, kn'' alone, whatever its state in YADE (settleKinks:
 	// its shear is left to the next iteration, which has the state it lands in).
-	char contactTangent(Law2_ScGeom_SwellPhys_AgingSwelling& law2, const Interaction* I, Real& kn, Real& ks, Real& slide, bool sticking, bool closed)
+	char contactTangent(Law2_ScGeom_SwellPhys_AgingSwelling& law2, const Interaction* I, Real& kn, Real& ks, Real& slide, Real dir[2], bool sticking,
+	                    bool closed)
 	{
-		slide          = 0;
+		slide = 0, dir[0] = 1, dir[1] = 0;
 		const auto* sp = dynamic_cast<const SwellPhys*>(I->phys.get());
 		if (!sp) {
 			const auto* p = static_cast<const NormShearPhys*>(I->phys.get());
@@ -110,9 +122,47 @@ namespace {
 		const Mode m  = sticking && m0 == Mode::Sliding ? Mode::Sticking : m0;
 		kn           = m == Mode::Open ? 0 : sp->state.kn;
 		ks           = (m == Mode::Intact || m == Mode::Sticking) ? sp->state.ks : 0;
-		if (m == Mode::Sliding)
-			slide = -(sp->state.trial.Fs > 0 ? 1 : -1) * std::tan(law2.lawFor(*sp->kind).params().strength.residualFrictionAngle) * sp->state.kn;
+		if (m == Mode::Sliding) {
+			const Real tanPhi = std::tan(law2.lawFor(*sp->kind).params().strength.residualFrictionAngle);
+			if (sp->dim == 3) {
+				const Real size = std::hypot(sp->state.trial.Fs, sp->state.trial.Fs2);
+				if (size > 0) slide = -tanPhi * sp->state.kn, dir[0] = sp->state.trial.Fs / size, dir[1] = sp->state.trial.Fs2 / size;
+			} else
+				slide = -(sp->state.trial.Fs > 0 ? 1 : -1) * tanPhi * sp->state.kn;
+		}
 		return char(m0);
+	}
+
+	// A contact's rows over its DOFs (body 1's, then body 2's): its normal opening bn and its shear
+	// slips bs (2D: along ez x n; 3D: along the law's first tangent, SwellPhys.frameAxis) and bs2 (3D:
+	// the second tangent), as YADE's ScGeom measures them from the bodies' moves, a rotation turning
+	// the contact point at lever arm r - penetration / 2. A stock contact's shear in 3D is isotropic:
+	// any pair of tangents gives its stiffness. Returns the number of DOFs, 6 or 12.
+	int contactRows(const Interaction* I, int nb, Real bn[12], Real bs[12], Real bs2[12])
+	{
+		const auto*     g  = static_cast<const ScGeom*>(I->geom.get());
+		const Vector3r& n  = g->normal;
+		const Real      r1 = g->radius1 - 0.5 * g->penetrationDepth, r2 = g->radius2 - 0.5 * g->penetrationDepth;
+		if (nb == 3) {
+			const Real n2[6] = { -n[0], -n[1], 0, n[0], n[1], 0 };
+			const Real s2[6] = { n[1], -n[0], -r1, -n[1], n[0], -r2 };
+			std::copy(n2, n2 + 6, bn), std::copy(s2, s2 + 6, bs);
+			return 6;
+		}
+		const auto* sp   = dynamic_cast<const SwellPhys*>(I->phys.get());
+		int         axis = 0;
+		if (sp)
+			axis = sp->frameAxis;
+		else
+			n.cwiseAbs().minCoeff(&axis);
+		const auto [t1, t2] = Law2_ScGeom_SwellPhys_AgingSwelling::tangents(n, axis);
+		// slip along t: t.(u2 - u1) - r1 theta1.(n x t) - r2 theta2.(n x t); n x t1 = t2, n x t2 = -t1
+		for (int d = 0; d < 3; ++d) {
+			bn[d] = -n[d], bn[3 + d] = 0, bn[6 + d] = n[d], bn[9 + d] = 0;
+			bs[d] = -t1[d], bs[3 + d] = -r1 * t2[d], bs[6 + d] = t1[d], bs[9 + d] = -r2 * t2[d];
+			bs2[d] = -t2[d], bs2[3 + d] = r1 * t1[d], bs2[6 + d] = t2[d], bs2[9 + d] = r2 * t1[d];
+		}
+		return 12;
 	}
 }
 
@@ -122,7 +172,6 @@ ImplicitLogTimeSolver::ImplicitLogTimeSolver()
 	minIterations  = 1;
 	colliderPeriod = 1;
 	iterationName  = "Newton";
-	runs3D         = false; // its tangent is that of discs
 	// Newton needs a residual that depends on the state reached, not on the iterations' path
 	shearFromStepStart = true;
 	progressDetail     = [this] {
@@ -169,40 +218,60 @@ string ImplicitLogTimeSolver::fallbackDetail() const
 	return buf;
 }
 
+const unsigned* ImplicitLogTimeSolver::dofBits() const
+{
+	static const unsigned bits2D[3] = { State::DOF_X, State::DOF_Y, State::DOF_RZ };
+	static const unsigned bits3D[6] = { State::DOF_X, State::DOF_Y, State::DOF_Z, State::DOF_RX, State::DOF_RY, State::DOF_RZ };
+	return nDim == 3 ? bits3D : bits2D;
+}
+
 void ImplicitLogTimeSolver::choosePins()
 {
-	// A specimen held nowhere in translation has three rigid-body modes (two translations, one
-	// rotation), which make K singular. They are removed by holding one disc near the centre in x
-	// and y and a second, far from it, across the line joining them: this moves the specimen as a
-	// rigid body only, so no force and no strain changes (tests/python/test_implicit_solver.py).
+	// A specimen held nowhere in translation has rigid-body modes (2D: two translations, one
+	// rotation; 3D: three and three), which make K singular. They are removed by holding one body
+	// near the centre in every translation and, in 2D, a second, far from it, across the line
+	// joining them: this moves the specimen as a rigid body only, so no force and no strain changes
+	// (tests/python/test_implicit_solver.py). In 3D the centre body's three rotations are held
+	// instead of other bodies' positions: a rigid rotation turns every body, so this removes the
+	// three rotation modes too, and it turns the specimen only by that body's own rotation, not by
+	// the specimen's strain across a line (YADE's 3D shear is not exactly objective: a free swelling
+	// lattice turned by its strain, 1.8e-3 rad, carried self-balanced forces of 7e-5 of its
+	// swelling force; not turned, 1e-12: tests/python/test_implicit_3d.py).
 	pinnedDofs.assign(1, -1); // decided: none
-	const auto& bodies = scene->bodies->body;
+	const auto&    bodies = scene->bodies->body;
+	const bool     threeD = nDim == 3;
+	const int      nd     = threeD ? 3 : 2;
+	const unsigned moves  = threeD ? State::DOF_X | State::DOF_Y | State::DOF_Z : State::DOF_X | State::DOF_Y;
 	for (const auto& b : bodies)
-		if (b && (b->state->blockedDOFs & (State::DOF_X | State::DOF_Y))) return;
+		if (b && (b->state->blockedDOFs & moves)) return;
 	std::vector<int> degree(bodies.size(), 0);
 	const auto&      L = scene->interactions->linIntrs;
 	for (size_t i = 0; i < scene->interactions->currSize; ++i)
 		if (L[i]->isReal()) ++degree[L[i]->id1], ++degree[L[i]->id2];
-	Vector2r c = Vector2r::Zero();
-	long     n = 0;
+	auto     pos = [&](int id) { return bodies[id]->state->se3.position; };
+	Vector3r c   = Vector3r::Zero();
+	long     n   = 0;
 	for (const auto& b : bodies)
-		if (b && degree[b->id] >= 2) c += b->state->se3.position.head<2>(), ++n;
+		if (b && degree[b->id] >= 2) c.head(nd) += pos(b->id).head(nd), ++n;
 	if (n < 2) return;
 	c /= Real(n);
 	int  a = -1, f = -1;
 	Real best = std::numeric_limits<Real>::infinity(), far = -1;
 	for (const auto& b : bodies)
 		if (b && degree[b->id] >= 2) {
-			const Real d = (b->state->se3.position.head<2>() - c).norm();
+			const Real d = (pos(b->id).head(nd) - c.head(nd)).norm();
 			if (d < best) best = d, a = b->id;
 		}
-	const Vector2r pa = bodies[a]->state->se3.position.head<2>();
+	if (threeD) {
+		pinnedDofs = { 6 * a, 6 * a + 1, 6 * a + 2, 6 * a + 3, 6 * a + 4, 6 * a + 5 };
+		return;
+	}
 	for (const auto& b : bodies)
 		if (b && degree[b->id] >= 2) {
-			const Real d = (b->state->se3.position.head<2>() - pa).norm();
+			const Real d = (pos(b->id).head(nd) - pos(a).head(nd)).norm();
 			if (d > far) far = d, f = b->id;
 		}
-	const Vector2r d = bodies[f]->state->se3.position.head<2>() - pa;
+	const Vector2r d = bodies[f]->state->se3.position.head<2>() - bodies[a]->state->se3.position.head<2>();
 	pinnedDofs       = { 3 * a, 3 * a + 1, 3 * f + (std::abs(d[0]) >= std::abs(d[1]) ? 1 : 0) };
 }
 
@@ -225,9 +294,10 @@ void ImplicitLogTimeSolver::numberEquations()
 std::vector<unsigned> ImplicitLogTimeSolver::heldDofMasks() const
 {
 	const auto&           bodies = scene->bodies->body;
+	const unsigned        dofs   = nDim == 3 ? kAllDOF : State::DOF_X | State::DOF_Y | State::DOF_RZ;
 	std::vector<unsigned> masks(bodies.size(), 0);
 	for (const auto& b : bodies)
-		if (b) masks[b->id] = b->state->blockedDOFs & (State::DOF_X | State::DOF_Y | State::DOF_RZ);
+		if (b) masks[b->id] = b->state->blockedDOFs & dofs;
 	return masks;
 }
 
@@ -247,19 +317,22 @@ void ImplicitLogTimeSolver::numberDofs(const std::vector<unsigned>& masks)
 	ImplicitLinearSystem& S      = *sys;
 	const auto&           bodies = scene->bodies->body;
 	S.dofMasks                   = masks;
-	S.dofOf.assign(3 * bodies.size(), -1);
+	S.nb                         = dofsPerBody();
+	S.pairs                      = S.nb == 6 ? &kPairs3D : &kPairs2D;
+	const int nb                 = S.nb;
+	S.dofOf.assign(nb * bodies.size(), -1);
 	S.nEq = 0;
-	const unsigned axisBit[3] = { State::DOF_X, State::DOF_Y, State::DOF_RZ };
+	const unsigned* axisBit = dofBits();
 	for (const auto& b : bodies)
 		if (b && !b->isClump())
-			for (int d = 0; d < 3; ++d)
-				if (!(masks[b->id] & axisBit[d])) S.dofOf[3 * b->id + d] = S.nEq++;
+			for (int d = 0; d < nb; ++d)
+				if (!(masks[b->id] & axisBit[d])) S.dofOf[nb * b->id + d] = S.nEq++;
 	for (int p : pinnedDofs)
 		if (p >= 0 && size_t(p) < S.dofOf.size()) S.dofOf[p] = -1;
 	S.nEq = 0; // renumber without the pins
 	S.isRotation.clear();
 	for (size_t k = 0; k < S.dofOf.size(); ++k)
-		if (S.dofOf[k] >= 0) S.dofOf[k] = S.nEq++, S.isRotation.push_back(k % 3 == 2);
+		if (S.dofOf[k] >= 0) S.dofOf[k] = S.nEq++, S.isRotation.push_back(int(k % nb) >= (nb == 6 ? 3 : 2));
 }
 
 void ImplicitLogTimeSolver::makePattern()
@@ -268,17 +341,18 @@ void ImplicitLogTimeSolver::makePattern()
 	ImplicitLinearSystem& S        = *sys;
 	const auto&           contacts = S.contacts;
 	S.graph.resize(contacts.size());
+	const PairTable&                         P = *S.pairs;
 	std::vector<Eigen::Triplet<double, int>> trip;
-	trip.reserve(contacts.size() * 21 + S.nEq);
+	trip.reserve(contacts.size() * P.size + S.nEq);
 	for (int e = 0; e < S.nEq; ++e)
 		trip.emplace_back(e, e, 0.0);
 	for (size_t c = 0; c < contacts.size(); ++c) {
 		const Interaction* I = contacts[c];
 		S.graph[c]           = { I->id1, I->id2 };
-		int eq[6];
+		int eq[LowRankColumn::kSize];
 		S.equationsOf(I, eq);
-		for (int k = 0; k < 21; ++k) {
-			const int r = eq[kPairs.a[k]], s = eq[kPairs.b[k]];
+		for (int k = 0; k < P.size; ++k) {
+			const int r = eq[P.a[k]], s = eq[P.b[k]];
 			if (r >= 0 && s >= 0) trip.emplace_back(std::max(r, s), std::min(r, s), 0.0);
 		}
 	}
@@ -292,16 +366,17 @@ void ImplicitLogTimeSolver::findSlots()
 	// Found once per pattern, so that assembling the tangent writes K's values without a search.
 	ImplicitLinearSystem& S        = *sys;
 	const auto&           contacts = S.contacts;
-	S.slots.assign(21 * contacts.size(), -1);
+	const PairTable&      P        = *S.pairs;
+	S.slots.assign(P.size * contacts.size(), -1);
 	S.diagSlot.assign(S.nEq, -1);
 	for (int e = 0; e < S.nEq; ++e)
 		S.diagSlot[e] = S.slotOf(e, e);
 	for (size_t c = 0; c < contacts.size(); ++c) {
-		int eq[6];
+		int eq[LowRankColumn::kSize];
 		S.equationsOf(contacts[c], eq);
-		for (int k = 0; k < 21; ++k) {
-			const int r = eq[kPairs.a[k]], s = eq[kPairs.b[k]];
-			if (r >= 0 && s >= 0) S.slots[21 * c + k] = S.slotOf(std::max(r, s), std::min(r, s));
+		for (int k = 0; k < P.size; ++k) {
+			const int r = eq[P.a[k]], s = eq[P.b[k]];
+			if (r >= 0 && s >= 0) S.slots[P.size * c + k] = S.slotOf(std::max(r, s), std::min(r, s));
 		}
 	}
 }
@@ -349,7 +424,7 @@ void ImplicitLogTimeSolver::assembleTangent(bool firstPass, bool exact)
 	if (firstPass) activeChanges = changes;
 	double* v = S.K.valuePtr();
 	forEachSpring([&](int id, int axis, Real k) {
-		const int e = S.dofOf[3 * id + axis];
+		const int e = S.dofOf[S.nb * id + axis];
 		if (e >= 0) v[S.diagSlot[e]] += k;
 	});
 	kScale            = S.contacts.empty() ? 1.0 : kScale / S.contacts.size();
@@ -379,27 +454,35 @@ char ImplicitLogTimeSolver::addContact(size_t c, bool lowRank)
 	// K nor in a column is left out. Returns the contact's state (core::ContactLaw::Mode).
 	ImplicitLinearSystem& S = *sys;
 	const Interaction*    I = S.contacts[c];
-	const auto*           g = static_cast<const ScGeom*>(I->geom.get());
-	Real                  kn, ks, slide;
-	const char            state = contactTangent(*law2, I, kn, ks, slide, S.mech[I->id1] || S.mech[I->id2], !S.kink.empty() && S.kink[c]);
+	Real                  kn, ks, slide, dir[2];
+	const char state = contactTangent(*law2, I, kn, ks, slide, dir, S.mech[I->id1] || S.mech[I->id2], !S.kink.empty() && S.kink[c]);
 	S.stiffness[2 * c] = kn, S.stiffness[2 * c + 1] = ks;
 	Real kA = kn, sA = ks; // into K
 	const bool changedHere = lowRank && (kn != factoredStiffness[2 * c] || ks != factoredStiffness[2 * c + 1]);
 	if (kn == 0 && ks == 0 && !changedHere) return state;
-	const Vector3r& n  = g->normal;
-	const Real      r1 = g->radius1 - 0.5 * g->penetrationDepth, r2 = g->radius2 - 0.5 * g->penetrationDepth;
-	const Real      bn[6] = { -n[0], -n[1], 0, n[0], n[1], 0 };
-	const Real      bs[6] = { n[1], -n[0], -r1, -n[1], n[0], -r2 };
-	if (changedHere) addStiffnessChange(c, kn, ks, bn, bs, kA, sA);
-	if (slide != 0) S.addColumn(I, 2, slide, bs, bn);
-	const int* slot = &S.slots[21 * c];
-	double*    v    = S.K.valuePtr();
-	for (int k = 0; k < 21; ++k)
-		if (slot[k] >= 0) v[slot[k]] += kA * bn[kPairs.a[k]] * bn[kPairs.b[k]] + sA * bs[kPairs.a[k]] * bs[kPairs.b[k]];
+	Real      bn[12], bs[12], bs2[12];
+	const int nc = contactRows(I, S.nb, bn, bs, bs2);
+	if (changedHere) addStiffnessChange(c, kn, ks, bn, bs, bs2, kA, sA);
+	if (slide != 0 && nc == 6) S.addColumn(I, 2, slide, bs, bn);
+	if (slide != 0 && nc == 12) {
+		Real along[12]; // the slip along the shear force
+		for (int k = 0; k < 12; ++k)
+			along[k] = dir[0] * bs[k] + dir[1] * bs2[k];
+		S.addColumn(I, 2, slide, along, bn);
+	}
+	const PairTable& P    = *S.pairs;
+	const int*       slot = &S.slots[P.size * c];
+	double*          v    = S.K.valuePtr();
+	if (nc == 6) {
+		for (int k = 0; k < P.size; ++k)
+			if (slot[k] >= 0) v[slot[k]] += kA * bn[P.a[k]] * bn[P.b[k]] + sA * bs[P.a[k]] * bs[P.b[k]];
+	} else
+		for (int k = 0; k < P.size; ++k)
+			if (slot[k] >= 0) v[slot[k]] += kA * bn[P.a[k]] * bn[P.b[k]] + sA * (bs[P.a[k]] * bs[P.b[k]] + bs2[P.a[k]] * bs2[P.b[k]]);
 	return state;
 }
 
-void ImplicitLogTimeSolver::addStiffnessChange(size_t c, Real kn, Real ks, const Real* bn, const Real* bs, Real& kA, Real& sA)
+void ImplicitLogTimeSolver::addStiffnessChange(size_t c, Real kn, Real ks, const Real* bn, const Real* bs, const Real* bs2, Real& kA, Real& sA)
 {
 	// The factor stays valid for K with the factored (kA, sA); the change enters the solve exactly, as
 	// columns, and its diagonal is kept for the shifts' correction (addDiagonalColumns).
@@ -407,14 +490,16 @@ void ImplicitLogTimeSolver::addStiffnessChange(size_t c, Real kn, Real ks, const
 	const Interaction*    I = S.contacts[c];
 	++S.changed;
 	const Real dkn = kn - factoredStiffness[2 * c], dks = ks - factoredStiffness[2 * c + 1];
+	const bool            threeD = S.nb == 6;
 	if (dkn != 0) S.addColumn(I, 0, dkn, bn, bn), kA = factoredStiffness[2 * c];
 	if (dks != 0) S.addColumn(I, 1, dks, bs, bs), sA = factoredStiffness[2 * c + 1];
-	int eq[6];
+	if (dks != 0 && threeD) S.addColumn(I, 4, dks, bs2, bs2);
+	int eq[LowRankColumn::kSize];
 	S.equationsOf(I, eq);
-	for (int k = 0; k < 6; ++k)
+	for (int k = 0; k < S.nc(); ++k)
 		if (eq[k] >= 0) {
 			if (S.deltaDiag[eq[k]] == 0) S.touched.push_back(eq[k]);
-			S.deltaDiag[eq[k]] += dkn * bn[k] * bn[k] + dks * bs[k] * bs[k];
+			S.deltaDiag[eq[k]] += dkn * bn[k] * bn[k] + dks * bs[k] * bs[k] + (threeD ? dks * bs2[k] * bs2[k] : 0.0);
 		}
 }
 
@@ -469,8 +554,9 @@ void ImplicitLogTimeSolver::addDiagonalColumns(const std::vector<Real>& raw, Rea
 		const Real exact = held + (S.isRotation[e] ? rotationShift(held) : 0.0);
 		const Real lowRankEntry = v[S.diagSlot[e]] + S.deltaDiag[e];
 		if (!(std::abs(exact - lowRankEntry) > 1e-2 * std::abs(exact))) continue;
-		LowRankColumn col { -1 - e, -1, 3, exact - lowRankEntry, { e, -1, -1, -1, -1, -1 }, {}, { 1, 0, 0, 0, 0, 0 } };
-		col.u[0] = col.value;
+		LowRankColumn col { -1 - e, -1, 3, exact - lowRankEntry, {}, {}, {} };
+		std::fill(col.eq, col.eq + LowRankColumn::kSize, -1);
+		col.eq[0] = e, col.u[0] = col.value, col.v[0] = 1;
 		S.columns.push_back(col);
 	}
 }
@@ -533,7 +619,7 @@ Eigen::VectorXd ImplicitLogTimeSolver::solveWithCoupling(const Eigen::VectorXd& 
 	auto solveColumn = [&](size_t j) {
 		const LowRankColumn& col = lowRankColumns[j];
 		Eigen::VectorXd      u   = Eigen::VectorXd::Zero(S.nEq);
-		for (int k = 0; k < 6; ++k)
+		for (int k = 0; k < S.nc(); ++k)
 			if (col.eq[k] >= 0) u[col.eq[k]] += col.u[k];
 		if (j < S.z.size())
 			S.z[j] = S.chol.solve(u);
@@ -553,10 +639,10 @@ Eigen::VectorXd ImplicitLogTimeSolver::solveWithCoupling(const Eigen::VectorXd& 
 			// kept while its u is within refactorTolerance of the one it was solved for, as the factor
 			const size_t j     = index[i] = it->second;
 			Real         drift = 0, size = 0;
-			for (int k = 0; k < 6; ++k)
+			for (int k = 0; k < S.nc(); ++k)
 				drift = std::max(drift, std::abs(col.u[k] - lowRankColumns[j].u[k])), size = std::max(size, std::abs(col.u[k]));
 			if (!(drift > refactorTolerance * size)) continue;
-			std::copy(col.u, col.u + 6, lowRankColumns[j].u);
+			std::copy(col.u, col.u + LowRankColumn::kSize, lowRankColumns[j].u);
 			solveColumn(j);
 			continue;
 		}
@@ -565,9 +651,9 @@ Eigen::VectorXd ImplicitLogTimeSolver::solveWithCoupling(const Eigen::VectorXd& 
 		solveColumn(S.z.size());
 	}
 	const long m    = long(use.size());
-	auto vDot = [](const LowRankColumn& col, const Eigen::VectorXd& x) {
+	auto vDot = [nc = S.nc()](const LowRankColumn& col, const Eigen::VectorXd& x) {
 		Real s = 0;
-		for (int k = 0; k < 6; ++k)
+		for (int k = 0; k < nc; ++k)
 			if (col.eq[k] >= 0) s += col.v[k] * x[col.eq[k]];
 		return s;
 	};
@@ -593,13 +679,17 @@ long ImplicitLogTimeSolver::holdMechanisms(const Eigen::VectorXd& du)
 	if (mechanismMove == 0) return 0;
 	long newlyHeld = 0;
 	auto moveOf    = [&](int id, int d) {
-		const int e = S.dofOf[3 * id + d];
+		const int e = S.dofOf[S.nb * id + d];
 		return e >= 0 ? du[e] : 0.0;
 	};
+	auto turnOf = [&](int id) { return Vector3r(moveOf(id, 3), moveOf(id, 4), moveOf(id, 5)).norm(); };
 	for (const Interaction* I : S.contacts) {
-		const auto* g   = static_cast<const ScGeom*>(I->geom.get());
-		const Real  rel = std::hypot(moveOf(I->id2, 0) - moveOf(I->id1, 0), moveOf(I->id2, 1) - moveOf(I->id1, 1))
-		                 + std::abs(moveOf(I->id1, 2)) * g->radius1 + std::abs(moveOf(I->id2, 2)) * g->radius2;
+		const auto* g = static_cast<const ScGeom*>(I->geom.get());
+		const Real  rel =
+		        S.nb == 3 ? std::hypot(moveOf(I->id2, 0) - moveOf(I->id1, 0), moveOf(I->id2, 1) - moveOf(I->id1, 1))
+		                        + std::abs(moveOf(I->id1, 2)) * g->radius1 + std::abs(moveOf(I->id2, 2)) * g->radius2
+		                  : Vector3r(moveOf(I->id2, 0) - moveOf(I->id1, 0), moveOf(I->id2, 1) - moveOf(I->id1, 1), moveOf(I->id2, 2) - moveOf(I->id1, 2)).norm()
+		                        + turnOf(I->id1) * g->radius1 + turnOf(I->id2) * g->radius2;
 		if (!(rel > mechanismMove * 0.5 * (g->radius1 + g->radius2))) continue;
 		for (int id : { I->id1, I->id2 })
 			if (!S.mech[id]) S.mech[id] = 1, heldMechanisms.push_back(id), ++newlyHeld, ++mechanismHolds;
@@ -662,20 +752,21 @@ Real ImplicitLogTimeSolver::kinkOpening(const Interaction* I, const Eigen::Vecto
 	const ImplicitLinearSystem& S = *sys;
 	const Vector3r&             n = static_cast<const ScGeom*>(I->geom.get())->normal;
 	auto                        m = [&](int id, int d) {
-                const int e = S.dofOf[3 * id + d];
+                const int e = S.dofOf[S.nb * id + d];
                 return e >= 0 ? x[e] : 0.0;
 	};
-	return n[0] * (m(I->id2, 0) - m(I->id1, 0)) + n[1] * (m(I->id2, 1) - m(I->id1, 1));
+	const Real open = n[0] * (m(I->id2, 0) - m(I->id1, 0)) + n[1] * (m(I->id2, 1) - m(I->id1, 1));
+	return S.nb == 3 ? open : open + n[2] * (m(I->id2, 2) - m(I->id1, 2));
 }
 
 void ImplicitLogTimeSolver::addNormalRow(const Interaction* I, Real scale, Eigen::VectorXd& v) const
 {
-	const Vector3r& n = static_cast<const ScGeom*>(I->geom.get())->normal;
-	int             eq[6];
+	int eq[LowRankColumn::kSize];
 	sys->equationsOf(I, eq);
-	const Real b[6] = { -n[0], -n[1], 0, n[0], n[1], 0 };
-	for (int k = 0; k < 6; ++k)
-		if (eq[k] >= 0) v[eq[k]] += scale * b[k];
+	Real      bn[12], bs[12], bs2[12];
+	const int nc = contactRows(I, sys->nb, bn, bs, bs2);
+	for (int k = 0; k < nc; ++k)
+		if (eq[k] >= 0) v[eq[k]] += scale * bn[k];
 }
 
 bool ImplicitLogTimeSolver::kinkModel(const std::vector<size_t>& C, const Eigen::VectorXd& r0, Eigen::VectorXd& du)
@@ -694,12 +785,18 @@ bool ImplicitLogTimeSolver::kinkModel(const std::vector<size_t>& C, const Eigen:
 		const auto*        sp = static_cast<const SwellPhys*>(I->phys.get());
 		const auto&        g  = *static_cast<const ScGeom*>(I->geom.get());
 		const Vector3r     f  = -sp->normalForce - sp->shearForce; // on body 1, as the law applies it
-		const Real         torque = g.normal.cross(f)[2];
-		const Real         val[6] = { f[0], f[1], (g.radius1 - 0.5 * g.penetrationDepth) * torque, -f[0], -f[1],
-                                      (g.radius2 - 0.5 * g.penetrationDepth) * torque };
-		int                eq[6];
+		const Vector3r     torque = g.normal.cross(f);
+		const Real         l1 = g.radius1 - 0.5 * g.penetrationDepth, l2 = g.radius2 - 0.5 * g.penetrationDepth;
+		Real               val[12];
+		if (S.nb == 3) {
+			const Real v2[6] = { f[0], f[1], l1 * torque[2], -f[0], -f[1], l2 * torque[2] };
+			std::copy(v2, v2 + 6, val);
+		} else
+			for (int d = 0; d < 3; ++d)
+				val[d] = f[d], val[3 + d] = l1 * torque[d], val[6 + d] = -f[d], val[9 + d] = l2 * torque[d];
+		int eq[LowRankColumn::kSize];
 		S.equationsOf(I, eq);
-		for (int k = 0; k < 6; ++k)
+		for (int k = 0; k < S.nc(); ++k)
 			if (eq[k] >= 0) rc[eq[k]] -= val[k];
 		addNormalRow(I, -sp->state.trial.FnHat, rc);
 	}
@@ -788,7 +885,8 @@ void ImplicitLogTimeSolver::newtonStep()
 	ImplicitLinearSystem& S      = *sys;
 	const auto&           bodies = scene->bodies->body;
 	const auto&           L      = scene->interactions->linIntrs;
-	lineMove.assign(3 * bodies.size(), 0.0);
+	const int             nb     = dofsPerBody();
+	lineMove.assign(nb * bodies.size(), 0.0);
 	S.contacts.clear();
 	S.contacts.reserve(scene->interactions->currSize);
 	for (size_t i = 0; i < scene->interactions->currSize; ++i)
@@ -802,9 +900,10 @@ void ImplicitLogTimeSolver::newtonStep()
 		if (!b) continue;
 		const Vector3r& f = scene->forces.getForce(b->id);
 		const Vector3r& t = scene->forces.getTorque(b->id);
-		const Real      val[3] = { f[0], f[1], t[2] };
-		for (int d = 0; d < 3; ++d)
-			if (S.dofOf[3 * b->id + d] >= 0) r[S.dofOf[3 * b->id + d]] = val[d];
+		const Real      val2[3] = { f[0], f[1], t[2] }, val3[6] = { f[0], f[1], f[2], t[0], t[1], t[2] };
+		const Real*     val     = nb == 3 ? val2 : val3;
+		for (int d = 0; d < nb; ++d)
+			if (S.dofOf[nb * b->id + d] >= 0) r[S.dofOf[nb * b->id + d]] = val[d];
 	}
 	S.mech.assign(bodies.size(), 0);
 	for (int id : heldMechanisms)
@@ -827,17 +926,29 @@ void ImplicitLogTimeSolver::newtonStep()
 	// Move the bodies through their velocities.
 	for (const auto& b : bodies) {
 		if (!b) continue;
-		const int* e = &S.dofOf[3 * b->id];
-		Vector2r   u(e[0] >= 0 ? du[e[0]] : 0.0, e[1] >= 0 ? du[e[1]] : 0.0);
-		Real       th = e[2] >= 0 ? du[e[2]] : 0.0;
+		const int* e    = &S.dofOf[nb * b->id];
+		auto       move = [&](int d) { return e[d] >= 0 ? du[e[d]] : 0.0; };
+		Real*      m    = &lineMove[nb * b->id];
 		// A mechanism's direction has next to no stiffness (the regularization), so its Newton move
 		// is unbounded: it goes at most maxMove radii per iteration, as if it slid or rolled.
-		if (bodyRadius[b->id] > 0) {
-			const Real cap = maxMove * bodyRadius[b->id];
-			if (u.norm() > cap) u *= cap / u.norm();
-			if (std::abs(th) > maxMove) th = th > 0 ? maxMove : -maxMove;
+		const Real cap = maxMove * bodyRadius[b->id];
+		if (nb == 3) {
+			Vector2r u(move(0), move(1));
+			Real     th = move(2);
+			if (bodyRadius[b->id] > 0) {
+				if (u.norm() > cap) u *= cap / u.norm();
+				if (std::abs(th) > maxMove) th = th > 0 ? maxMove : -maxMove;
+			}
+			m[0] = u[0], m[1] = u[1], m[2] = th;
+			continue;
 		}
-		lineMove[3 * b->id] = u[0], lineMove[3 * b->id + 1] = u[1], lineMove[3 * b->id + 2] = th;
+		Vector3r u(move(0), move(1), move(2)), th(move(3), move(4), move(5));
+		if (bodyRadius[b->id] > 0) {
+			if (u.norm() > cap) u *= cap / u.norm();
+			if (th.norm() > maxMove) th *= maxMove / th.norm();
+		}
+		for (int d = 0; d < 3; ++d)
+			m[d] = u[d], m[3 + d] = th[d];
 	}
 	moveBodies(1.0);
 }
@@ -859,16 +970,18 @@ Real ImplicitLogTimeSolver::residualMerit()
 		radius[I->id1] = std::max(radius[I->id1], g->radius1);
 		radius[I->id2] = std::max(radius[I->id2], g->radius2);
 	}
-	const unsigned axisBit[3] = { State::DOF_X, State::DOF_Y, State::DOF_RZ };
-	Real           s          = 0;
+	const unsigned* axisBit = dofBits();
+	const int       nb      = dofsPerBody();
+	Real            s       = 0;
 	for (const auto& b : bodies) {
 		if (!b || b->isClump()) continue;
 		const Vector3r& f = scene->forces.getForce(b->id);
 		const Vector3r& t = scene->forces.getTorque(b->id);
 		const Real      r = radius[b->id] > 0 ? radius[b->id] : 1.0;
-		const Real      val[3] = { f[0], f[1], t[2] / r };
-		for (int d = 0; d < 3; ++d)
-			if (!(b->state->blockedDOFs & axisBit[d]) && std::find(pinnedDofs.begin(), pinnedDofs.end(), 3 * b->id + d) == pinnedDofs.end())
+		const Real      val2[3] = { f[0], f[1], t[2] / r }, val3[6] = { f[0], f[1], f[2], t[0] / r, t[1] / r, t[2] / r };
+		const Real*     val     = nb == 3 ? val2 : val3;
+		for (int d = 0; d < nb; ++d)
+			if (!(b->state->blockedDOFs & axisBit[d]) && std::find(pinnedDofs.begin(), pinnedDofs.end(), nb * b->id + d) == pinnedDofs.end())
 				s += val[d] * val[d];
 	}
 	return std::sqrt(s);
@@ -878,18 +991,28 @@ void ImplicitLogTimeSolver::moveBodies(Real fraction)
 {
 	// Through the velocities too: YADE's ScGeom takes the shear increment from them.
 	const Real dt = scene->dt;
+	const int  nb = dofsPerBody(), nd = nb == 6 ? 3 : 2;
 	for (const auto& b : scene->bodies->body) {
-		if (!b || 3 * size_t(b->id) + 2 >= lineMove.size()) continue;
-		State*     s  = b->state.get();
-		const Real* m = &lineMove[3 * b->id];
-		for (int d = 0; d < 2; ++d) {
+		if (!b || nb * size_t(b->id) + nb - 1 >= lineMove.size()) continue;
+		State*      s = b->state.get();
+		const Real* m = &lineMove[nb * b->id];
+		for (int d = 0; d < nd; ++d) {
 			s->vel[d] = fraction * m[d] / dt;
 			s->se3.position[d] += fraction * m[d];
 		}
-		const Real th = fraction * m[2];
-		s->angVel     = Vector3r(0, 0, th / dt);
-		if (th != 0) {
-			s->se3.orientation = Quaternionr(Eigen::AngleAxis<Real>(th, Vector3r::UnitZ())) * s->se3.orientation;
+		if (nb == 3) {
+			const Real th = fraction * m[2];
+			s->angVel     = Vector3r(0, 0, th / dt);
+			if (th != 0) {
+				s->se3.orientation = Quaternionr(Eigen::AngleAxis<Real>(th, Vector3r::UnitZ())) * s->se3.orientation;
+				s->se3.orientation.normalize();
+			}
+			continue;
+		}
+		const Vector3r th = fraction * Vector3r(m[3], m[4], m[5]);
+		s->angVel         = th / dt;
+		if (th.norm() > 0) {
+			s->se3.orientation = Quaternionr(Eigen::AngleAxis<Real>(th.norm(), th.normalized())) * s->se3.orientation;
 			s->se3.orientation.normalize();
 		}
 	}

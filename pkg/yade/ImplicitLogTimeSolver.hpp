@@ -21,15 +21,17 @@ namespace yade {
 struct ImplicitLinearSystem; // the sparse matrix and its factor (Eigen + CHOLMOD), kept out of this header
 
 // A column pair (u, v) of the tangent J = K_factored + sum u v^T: a contact whose stiffness changed
-// since the factor was made (type 0 normal, 1 shear: u = dk b, v = b), a sliding contact's
-// shear-normal coupling (type 2: u = slide bs, v = bn) or a diagonal entry brought to the exact one
-// (type 3: id1 = -1 - equation). The columns whose K^-1 u is kept with the factor are saved with the
-// scene, so that a reloaded one solves the same columns in the same order.
+// since the factor was made (type 0 normal, 1 shear, 4 a 3D contact's second shear: u = dk b,
+// v = b), a sliding contact's shear-normal coupling (type 2: u = slide bs, v = bn, bs along its
+// shear force) or a diagonal entry brought to the exact one (type 3: id1 = -1 - equation). The
+// columns whose K^-1 u is kept with the factor are saved with the scene, so that a reloaded one
+// solves the same columns in the same order.
 struct LowRankColumn {
+	static constexpr int kSize = 12; // a 3D contact's DOFs; a 2D one uses the first 6
 	int  id1, id2, type;
 	Real value; // the change dk or the slope [N/m]
-	int  eq[6]; // equations of (x1, y1, rz1, x2, y2, rz2), -1 where held
-	Real u[6], v[6];
+	int  eq[kSize]; // equations of the contact's DOFs (body 1's, then body 2's), -1 where held or unused
+	Real u[kSize], v[kSize];
 	template <class Archive> void serialize(Archive& ar, unsigned)
 	{
 		ar& boost::serialization::make_nvp("id1", id1);
@@ -111,10 +113,12 @@ public:
 	  "Wall time of each step of fallbackSteps, from its start to its end [s]")                                                                     \
 	X(long, activeChanges, 0, swelldem_attr::Result, "Contacts whose state (intact, open, sticking, sliding) changed in the last iteration [-]")              \
 	X(std::vector<int>, pinnedDofs, std::vector<int>(), swelldem_attr::Internal,                                                                       \
-	  "Degrees of freedom held to remove a free specimen's rigid-body modes, as 3 x body id + axis (0 x, 1 y) [-]")                                  \
+	  "Degrees of freedom held to remove a free specimen's rigid-body modes, as n x body id + axis, n the DOFs a body (2D: 3, axes x, y, "    \
+	  "rz; 3D: 6, axes x, y, z, rx, ry, rz) [-]")                                  \
 	X(Real, lineAlpha, 0.0, swelldem_attr::Internal, "Fraction of the last Newton move being tried by the line search (0: none) [-]")               \
 	X(Real, lineRatio0, 0.0, swelldem_attr::Internal, "Residual 2-norm over the free DOFs before the last Newton move (torques over the radius) [N]") \
-	X(std::vector<Real>, lineMove, std::vector<Real>(), swelldem_attr::Internal, "The last Newton move, 3 per body (x, y, rotation z) [m, rad]")  \
+	X(std::vector<Real>, lineMove, std::vector<Real>(), swelldem_attr::Internal,                                                                     \
+	  "The last Newton move per body: 2D x, y, rotation z; 3D x, y, z and the rotation vector [m, rad]")  \
 	X(std::vector<int>, heldMechanisms, std::vector<int>(), swelldem_attr::Internal,                                                                   \
 	  "Discs whose sliding contacts enter the tangent as sticking in the current round (mechanismMove) [-]")                                        \
 	X(std::vector<Real>, factoredValues, std::vector<Real>(), swelldem_attr::Internal,                                                                 \
@@ -133,7 +137,7 @@ public:
 	X(int, relaxPhase, 0, swelldem_attr::Internal, "Dynamic relaxation phases in the current round [-]")                                             \
 	X(DynamicRelaxation, relax, DynamicRelaxation(), swelldem_attr::Internal, "State of the dynamic relaxation phases [-]")
 	SWELLDEM_CLASS(ImplicitLogTimeSolver, LogTimeSolver,
-	               "Quasi-static log-time solver for 2D swelldem scenes with an exact equilibrium at each physical step: Newton "
+	               "Quasi-static log-time solver for swelldem scenes (2D discs or 3D spheres) with an exact equilibrium at each physical step: Newton "
 	               "iterations on YADE's own residual with a sparse Cholesky factor (CHOLMOD) of the contacts' step stiffness, "
 	               "breaks at equilibrium and an active set for broken contacts. Replaces NewtonIntegrator; put it last in "
 	               "O.engines. Defaults differ from the ADR's: tolerance 1e-10 (met only after a Newton move of the round), minIterations 1, colliderPeriod 1.",
@@ -146,6 +150,8 @@ public:
 
 private:
 	long relaxationAtStepStart = 0, factorizationsAtStepStart = 0; // for the progress line only
+	int  dofsPerBody() const { return nDim == 3 ? 6 : 3; }       // 2D x, y, rz; 3D x, y, z, rx, ry, rz
+	const unsigned* dofBits() const;                             // the blocked-DOF bit of each of them
 	string fallbackDetail() const;                                 // the fallback's tolerance and hand-over, for the progress lines
 	std::vector<Real> bodyRadius; // per body, the largest radius its real contacts give it (0: none); this iteration's
 	void                                  choosePins();
@@ -161,7 +167,7 @@ private:
 	void                                  assembleTangent(bool firstPass, bool exact); // K's values, the low-rank columns; activeChanges
 	void                                  startAssembly();
 	char                                  addContact(size_t c, bool lowRank); // its entries and columns; its state
-	void                                  addStiffnessChange(size_t c, Real kn, Real ks, const Real* bn, const Real* bs, Real& kA, Real& sA);
+	void                                  addStiffnessChange(size_t c, Real kn, Real ks, const Real* bn, const Real* bs, const Real* bs2, Real& kA, Real& sA);
 	void                                  shiftDiagonal(Real kLoose);         // regularization, loose DOFs, rotations
 	Real                                  rotationShift(Real diagonal) const; // of a rotation's diagonal entry
 	void                                  addDiagonalColumns(const std::vector<Real>& raw, Real kLoose);

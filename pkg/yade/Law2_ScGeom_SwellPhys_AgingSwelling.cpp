@@ -8,13 +8,6 @@ namespace core = swelldem::core;
 namespace {
 	// The 2D tangent: the scene lies in the plane z = 0.
 	Vector3r tangentOf(const Vector3r& n) { return Vector3r(-n[1], n[0], 0); }
-	// A 3D contact's tangents (SwellPhys.frameAxis): ek x n, normalised, then n x t1; for k = z this
-	// first tangent is the 2D one.
-	std::pair<Vector3r, Vector3r> tangentsOf(const Vector3r& n, int axis)
-	{
-		const Vector3r t1 = Vector3r::Unit(axis).cross(n).normalized();
-		return { t1, n.cross(t1) };
-	}
 }
 
 void Law2_ScGeom_SwellPhys_AgingSwelling::beginContactStep(SwellPhys& p, const Vector3r& normal)
@@ -25,7 +18,7 @@ void Law2_ScGeom_SwellPhys_AgingSwelling::beginContactStep(SwellPhys& p, const V
 	p.ks = s.ks;
 	// The step's constant shear offset enters the incremental shear vector once.
 	if (p.dim == 3) {
-		const auto [t1, t2] = tangentsOf(normal, p.frameAxis);
+		const auto [t1, t2] = tangents(normal, p.frameAxis);
 		p.shearForce += s.ks * (s.duOffsetS * t1 + s.duOffsetS2 * t2);
 	} else
 		p.shearForce += s.ks * s.duOffsetS * tangentOf(normal);
@@ -92,7 +85,7 @@ bool Law2_ScGeom_SwellPhys_AgingSwelling::go(shared_ptr<IGeom>& ig, shared_ptr<I
 		const core::ContactForces* f;
 		if (p->dim == 3) {
 			// The shear's components on the contact's two tangents, with the same two paths as in 2D.
-			const auto [t1, t2] = tangentsOf(geom->normal, p->frameAxis);
+			const auto [t1, t2] = tangents(geom->normal, p->frameAxis);
 			if (shearFromStepStart) {
 				const Vector3r du = geom->shearIncrement();
 				f = &lawFor(kind).updateFromStepStart(p->geometry(), s, -geom->penetrationDepth, du.dot(t1), du.dot(t2), !breaksAtEquilibrium);

@@ -64,6 +64,13 @@ public:
 	/// forces exceed its strength and counts it; returns whether it broke.
 	bool breakIfOverloaded(SwellPhys& p);
 	int  chainSize(const shared_ptr<ContactKind>& kind);
+	/// A 3D contact's tangents (SwellPhys.frameAxis): ek x n, normalised, then n x t1; for k = z the
+	/// first is the 2D tangent ez x n. Its shear components Fs, Fs2 are along them.
+	static std::pair<Vector3r, Vector3r> tangents(const Vector3r& n, int axis)
+	{
+		const Vector3r t1 = Vector3r::Unit(axis).cross(n).normalized();
+		return { t1, n.cross(t1) };
+	}
 
 private:
 	void beginContactStep(SwellPhys& p, const Vector3r& normal);

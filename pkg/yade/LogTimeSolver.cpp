@@ -43,7 +43,8 @@ void LogTimeSolver::postLoad()
 	for (size_t i = 0; i < springBodies.size(); ++i)
 		core::require(springBodies[i] >= 0, getClassName() + ".springBodies[" + std::to_string(i) + "]", springBodies[i], ">= 0 (a body id)");
 	for (size_t i = 0; i < springAxes.size(); ++i)
-		core::require(springAxes[i] == 0 || springAxes[i] == 1, getClassName() + ".springAxes[" + std::to_string(i) + "]", springAxes[i], "0 (x) or 1 (y)");
+		core::require(springAxes[i] >= 0 && springAxes[i] <= 2, getClassName() + ".springAxes[" + std::to_string(i) + "]", springAxes[i],
+		              "0 (x), 1 (y) or 2 (z, 3D)");
 	for (size_t i = 0; i < springStiffness.size(); ++i)
 		core::requireNonNegative(getClassName() + ".springStiffness[" + std::to_string(i) + "] [N/m]", springStiffness[i]);
 	core::require(historyEvery >= 0, getClassName() + ".historyEvery", historyEvery, ">= 0 (0: no history)");
@@ -172,10 +173,6 @@ void LogTimeSolver::initialize()
 		                            + " is a disc of a 2D section (State.blockedDOFs containing 'zXY') and body " + std::to_string(spatial)
 		                            + " a sphere free out of the plane; allowed: all discs (2D) or all spheres (3D)");
 	nDim = spatial >= 0 ? 3 : 2;
-	if (nDim == 3 && !runs3D)
-		throw std::invalid_argument("swelldem: " + getClassName() + " cannot start: body " + std::to_string(spatial)
-		                            + " is a sphere free out of the plane (a 3D scene); allowed: a 2D section (State.blockedDOFs "
-		                              "containing 'zXY'); AdrLogTimeIntegrator runs 3D scenes");
 	requireContactKinds(scene, getClassName());
 	findLaw();
 	times = core::logTimes(tStart, tEnd, stepsPerDecade, std::vector<double>(extraTimes.begin(), extraTimes.end()));
@@ -200,6 +197,8 @@ void LogTimeSolver::initialize()
 		if (size_t(springBodies[i]) >= B.size() || !B[springBodies[i]])
 			throw std::invalid_argument("swelldem: " + getClassName() + ".springBodies[" + std::to_string(i) + "] = " + std::to_string(springBodies[i])
 			                            + " is not a body of the scene");
+		if (springAxes[i] >= nDim)
+			core::require(false, getClassName() + ".springAxes[" + std::to_string(i) + "]", springAxes[i], "0 (x) or 1 (y) in a 2D scene");
 		springAnchors.push_back(B[springBodies[i]]->state->se3.position[springAxes[i]]);
 	}
 	if (verbose) {

@@ -8,7 +8,8 @@
 // (Newton iterations with a sparse Cholesky factor) derive from it and implement action() with
 // the helpers below. Imposed displacements: move a held body (blockedDOFs x or y) by setting its
 // position, e.g. in the stepHook; constant loads: YADE's ForceEngine or O.forces.setPermF; a body
-// held elastically (a partially restrained platen): springBodies. 2D only: discs in the plane z = 0 with z translation and x, y rotations blocked.
+// held elastically (a partially restrained platen): springBodies. A scene is 2D (discs in the plane z = 0, z translation
+// and x, y rotations blocked) or 3D (spheres, six DOFs a body): nDim.
 #pragma once
 #include <functional>
 #include "Law2_ScGeom_SwellPhys_AgingSwelling.hpp"
@@ -41,7 +42,7 @@ public:
 	  "overloaded contact at once; for measuring what the break rule changes (docs/performance.md) [-]")                                           \
 	X(std::vector<int>, springBodies, std::vector<int>(), swelldem_attr::Setting,                                                                       \
 	  "Bodies held by a linear spring to where they are at the run's start, along springAxes (a platen under partial restraint) [-]")             \
-	X(std::vector<int>, springAxes, std::vector<int>(), swelldem_attr::Setting, "Axis of each spring: 0 x, 1 y [-]")                                  \
+	X(std::vector<int>, springAxes, std::vector<int>(), swelldem_attr::Setting, "Axis of each spring: 0 x, 1 y, 2 z (3D) [-]")                                  \
 	X(std::vector<Real>, springStiffness, std::vector<Real>(), swelldem_attr::Setting, "Stiffness of each spring, >= 0 [N/m]")                      \
 	X(bool, verbose, true, swelldem_attr::Setting, "Print a progress line per physical step [-]")                                                      \
 	X(long, historyEvery, 20, swelldem_attr::Setting,                                                                                                    \
@@ -140,7 +141,6 @@ protected:
 	Law2_ScGeom_SwellPhys_AgingSwelling* law2               = nullptr; // the scene's law functor (owns the run's laws), found at the start and after O.load
 	const char*                          iterationName      = "ADR";   // what one iteration is, for the progress lines
 	bool                                 shearFromStepStart = false;   // the law functor's mode this solver sets
-	bool                                 runs3D             = true;    // whether this solver takes a 3D scene (nDim 3)
 	/// What a solver adds to the progress line about its own iterations (not virtual: the vtable
 	/// must keep the size of the stock engine's, compat/abi_pairs.txt).
 	std::function<std::string()> progressDetail;

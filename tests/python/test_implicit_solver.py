@@ -2,7 +2,7 @@
 """ImplicitLogTimeSolver against closed forms (evaluated here, not by the plugin) and against the
 ADR: a regular lattice under uniform imposed swelling (free: zero forces and the affine strain;
 restrained in x: the force the contact stiffness implies), a broken contact in compression that
-sticks or slides, a bonded contact under a constant external force, and a 3D scene refused."""
+sticks or slides, a bonded contact under a constant external force. 3D scenes: test_implicit_3d.py."""
 import math
 
 import pytest
@@ -219,23 +219,6 @@ def test_broken_contact_sticks_then_slides_under_an_imposed_shear_displacement(y
             slid = True
             assert abs(fs) == pytest.approx(mu * abs(fn), rel=rel)
     assert slid
-
-
-def test_a_3d_scene_is_refused_before_any_work(yade_run):
-    res = yade_run(r"""
-from yade import utils
-W = yade.wrapper
-O.bodies.append([utils.sphere((0, 0, 0), 1e-3), utils.sphere((2e-3, 0, 0), 1e-3)])
-O.engines = [W.ForceResetter(), W.ImplicitLogTimeSolver()]
-try:
-    for _ in range(3):   # O.step: in this thread, so the engine's exception reaches the script directly
-        O.step()
-    dump({"err": None})
-except Exception as e:
-    dump({"err": str(e)})
-""", threads=1)
-    assert res["err"] and "ImplicitLogTimeSolver cannot start: body 0 is a sphere free out of the plane (a 3D scene)" in res["err"]
-    assert "AdrLogTimeIntegrator runs 3D scenes" in res["err"]
 
 
 # A cracking specimen (ISR, elastic, damage on, paper-micro values, 10 steps a decade, seed 1) under

@@ -122,10 +122,6 @@ def to_yade(assembly, kinds, solver, reset=True, density=2400.0, young=30e9, poi
     t0 = time.time()
     dim = getattr(assembly, "dim", 2)
     yade, W = _yade()
-    if dim == 3 and isinstance(solver, W.ImplicitLogTimeSolver):
-        # Refused here, before the scene is built; the solver refuses it too when it starts.
-        raise ValueError("swelldem.dem.to_yade: a 3D assembly with ImplicitLogTimeSolver is out of range; allowed: "
-                         "AdrLogTimeIntegrator (solver 'adr') for 3D scenes, the implicit solver for 2D sections")
     _check_kinds(assembly, kinds)
     n, m = assembly.n_particles, assembly.n_contacts
     if n == 0:

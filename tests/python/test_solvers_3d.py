@@ -1,8 +1,9 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
-"""The ADR on 3D scenes (spheres, three translations and three rotations a body) against closed
-forms evaluated here: a face-centred cubic lattice with every contact swelling, free (no forces,
-the affine strain d_inf dxi / (2 r) in x, y and z) and held on its outer layer (every interior
-contact at -kn d_inf dxi); a 3D mesostructure runs to its end; what the 3D path refuses."""
+"""Both solvers on 3D scenes (spheres, three translations and three rotations a body) against
+closed forms evaluated here: a face-centred cubic lattice with every contact swelling, free (no
+forces, the affine strain d_inf dxi / (2 r) in x, y and z) and held on its outer layer (every
+interior contact at -kn d_inf dxi); a 3D mesostructure under both solvers; what the 3D path
+refuses."""
 import math
 
 import numpy as np
@@ -33,7 +34,7 @@ for i in range(N):
             ids[i, j, k] = O.bodies.append(b)
             if {{i, j, k}} & {{0, N - 1}}:
                 outer.add(ids[i, j, k])
-solver = W.AdrLogTimeIntegrator(tStart=1.0, tEnd=3650.0, stepsPerDecade=5, tolerance={tol}, verbose=False)
+solver = W.{solver}(tStart=1.0, tEnd=3650.0, stepsPerDecade=5, tolerance={tol}, verbose=False)
 ip2 = W.Ip2_ConcreteMat_ConcreteMat_SwellPhys(mortar=kind, itz=kind, agg=kind)
 O.engines = [W.ForceResetter(), W.InsertionSortCollider([W.Bo1_Sphere_Aabb(aabbEnlargeFactor=1.05)], verletDist=0, label="collider"),
              W.InteractionLoop([W.Ig2_Sphere_Sphere_ScGeom(interactionDetectionFactor=1.05)], [ip2], [W.Law2_ScGeom_SwellPhys_AgingSwelling()]),
@@ -71,8 +72,14 @@ D_INF, E, R = 1e-6, 30e9, 0.5e-3
 KN = E * (2 * R) ** 2 / (2 * math.sqrt(2)) / (2 * R)   # kn = E A / L
 
 
-def test_free_fcc_lattice_swells_affinely_without_forces(yade_run):
-    res = yade_run(FCC.format(n=7, tol=1e-7) + RUN.format(hold=""), threads=1)
+# measured: ADR at tolerance 1e-7, 3.1e-5 (openings, forces) and 1.3e-5 (strains) in 1,333 iterations;
+# implicit, 1.0e-12, 7.9e-13 and 3.1e-13 in 34 iterations. Bounds 1e-4 (3x) and 1e-9 (the issue's;
+# 1000x). Holding two more bodies across the specimen in place of the centre body's rotations (the
+# 2D way of removing the rigid modes) turns the lattice by 1.8e-3 rad and leaves 7e-5 (pins
+# in ImplicitLogTimeSolver::choosePins).
+@pytest.mark.parametrize("solver, tol, bound", [("AdrLogTimeIntegrator", 1e-7, 1e-4), ("ImplicitLogTimeSolver", 1e-10, 1e-9)])
+def test_free_fcc_lattice_swells_affinely_without_forces(yade_run, solver, tol, bound):
+    res = yade_run(FCC.format(n=7, tol=tol, solver=solver) + RUN.format(hold=""), threads=1)
     assert res["nDim"] == 3 and res["dims"] == [3] and res["contacts"] > 3 * res["n"]
     dxi = larive(3650.0) - larive(1.0)
     opening = D_INF * dxi
@@ -82,12 +89,12 @@ def test_free_fcc_lattice_swells_affinely_without_forces(yade_run):
     strain_err = max(abs((s - res["span0"]) / res["span0"] - strain) for s in res["span"]) / strain
     print(f"measured: openings {gap_err:.2e}, forces {force:.2e}, strains {strain_err:.2e} of the closed form; "
           f"{res['iters']} iterations")
-    # measured 3.1e-5, 3.1e-5 and 1.3e-5 at tolerance 1e-7 (1,333 iterations): bound 1e-4, 3x
-    assert gap_err < 1e-4 and force < 1e-4 and strain_err < 1e-4
+    assert gap_err < bound and force < bound and strain_err < bound
 
 
-def test_fcc_lattice_held_on_its_outer_layer_carries_the_contact_stiffness_force(yade_run):
-    res = yade_run(FCC.format(n=7, tol=1e-7) + RUN.format(hold="""
+@pytest.mark.parametrize("solver, tol", [("AdrLogTimeIntegrator", 1e-7), ("ImplicitLogTimeSolver", 1e-10)])
+def test_fcc_lattice_held_on_its_outer_layer_carries_the_contact_stiffness_force(yade_run, solver, tol):
+    res = yade_run(FCC.format(n=7, tol=tol, solver=solver) + RUN.format(hold="""
 for bid in outer:
     O.bodies[bid].state.blockedDOFs = "xyzXYZ"
 """), threads=1)
@@ -101,40 +108,57 @@ for bid in outer:
     assert err < 1e-9
 
 
-def test_a_3d_mesostructure_runs_with_the_adr_and_is_refused_by_the_implicit_solver(yade_run):
-    res = yade_run(r"""
+MESO = r"""
+import sys
 from swelldem import scenario, meso, dem
-test = scenario.SwellingTest(scenario="isr", behaviour="viscoelastic", damage=True, size_mm=[8.0, 8.0], seed=1, steps_per_decade=1)
+name = sys.argv[1]
+test = scenario.SwellingTest(scenario="isr", behaviour="viscoelastic", damage=True, size_mm=[8.0, 8.0], seed=1, steps_per_decade=2)
 assembly = meso.generate(dim=3, seed=1, width_mm=8.0, height_mm=8.0, depth_mm=8.0, aggregate_area_fraction=0.0)
 kinds = scenario.make_kinds(test)
 scenario.set_swelling(test, kinds, test.eps_inf * 2 * float(assembly.r.mean()))
-out = {}
-try:
-    dem.to_yade(assembly, kinds, dem.make_solver("implicit", tStart=1.0, tEnd=3650.0, stepsPerDecade=1, verbose=False))
-    out["implicit"] = None
-except ValueError as e:
-    out["implicit"] = str(e)
-solver = dem.make_solver("adr", tStart=1.0, tEnd=3650.0, stepsPerDecade=1, verbose=False)
+settings = {"tolerance": float(sys.argv[2])} if len(sys.argv) > 2 else {}
+solver = dem.make_solver(name, tStart=1.0, tEnd=3650.0, stepsPerDecade=2, verbose=False, **settings)
 dem.to_yade(assembly, kinds, solver)
+import numpy as np
+p0 = np.array([list(b.state.pos) for b in O.bodies])
+bonded = [(i.id1, i.id2) for i in O.interactions if i.isReal and not i.phys.broken]
 while not solver.finished:
     O.run(5000, True)
 xs = [b.state.pos for b in O.bodies]
+# the affine fit of the displacements (least squares over every sphere): its diagonal
+fit = np.linalg.lstsq(np.c_[p0, np.ones(len(p0))], np.array([list(p) for p in xs]) - p0, rcond=None)[0]
 span = [max(p[d] for p in xs) - min(p[d] for p in xs) for d in range(3)]
-out.update({"n": len(O.bodies), "dims": sorted({i.phys.dim for i in O.interactions if i.isReal}),
-            "span": span, "span0": [float(assembly.x.max() - assembly.x.min()), float(assembly.y.max() - assembly.y.min()),
-                                    float(assembly.z.max() - assembly.z.min())],
-            "finished": solver.finished, "unbalanced": solver.unbalanced, "eps_inf": test.eps_inf})
-dump(out)
-""", threads=1, timeout=900)
-    assert res["implicit"] and "a 3D assembly with ImplicitLogTimeSolver is out of range" in res["implicit"]
-    assert res["finished"] and res["dims"] == [3]
-    strains = [(s - s0) / s0 for s, s0 in zip(res["span"], res["span0"])]
-    print("measured: strains", strains, "eps_inf", res["eps_inf"], "spheres", res["n"])
+broken = sum(1 for a, b in bonded if O.interactions[a, b] is None or not O.interactions[a, b].isReal or O.interactions[a, b].phys.broken)
+dump({"n": len(O.bodies), "dims": sorted({i.phys.dim for i in O.interactions if i.isReal}), "nDim": solver.nDim,
+      "span": span, "span0": [float(assembly.x.max() - assembly.x.min()), float(assembly.y.max() - assembly.y.min()),
+                              float(assembly.z.max() - assembly.z.min())],
+      "finished": solver.finished, "eps_inf": test.eps_inf, "broken": broken, "bonded": len(bonded),
+      "iters": solver.totalIterations, "affine": [float(fit[d, d]) for d in range(3)]})
+"""
+
+
+def test_a_3d_mesostructure_swells_alike_under_both_solvers(yade_run):
+    adr = yade_run(MESO, "adr", threads=1, timeout=900)
+    imp = yade_run(MESO, "implicit", threads=1, timeout=900)
+    strains = {}
+    for name, res in (("adr", adr), ("implicit", imp)):
+        assert res["finished"] and res["dims"] == [3] and res["nDim"] == 3
+        strains[name] = [(s - s0) / s0 for s, s0 in zip(res["span"], res["span0"])]
+    print("measured: strains", strains, "eps_inf", adr["eps_inf"], "spheres", adr["n"], "broken", adr["broken"], imp["broken"],
+          "of", adr["bonded"], "iterations", adr["iters"], imp["iters"])
     # Plain mortar swelling freely: the same expansion in x, y and z, of the order of eps_inf
-    # (measured 0.986, 0.992 and 0.999 eps_inf, 1,065 spheres; the 3D micro-macro factor is not
-    # calibrated here, only that the specimen expands as a whole and alike in each direction).
-    assert all(0.5 * res["eps_inf"] < e < 2 * res["eps_inf"] for e in strains)
-    assert max(strains) - min(strains) < 0.1 * max(strains)
+    # (ADR: measured 0.986, 0.992 and 0.999 eps_inf, 1,065 spheres; the 3D micro-macro factor is
+    # table_3_2.py --dim 3's, not tested here, only that the specimen expands as a whole and alike
+    # in each direction).
+    for e in strains.values():
+        assert all(0.5 * adr["eps_inf"] < x < 2 * adr["eps_inf"] for x in e)
+        assert max(e) - min(e) < 0.1 * max(e)
+    # The two solvers on one specimen, by the affine fit of the spheres' displacements (the spans
+    # above hang on a few surface spheres): measured 1.3e-3, 1e-5 and 3e-4 apart with the ADR at
+    # its default tolerance 1e-4 (at 1e-6: 4.7e-4, 2.5e-5, 3e-4); bound 5e-3, 4x.
+    gap = max(abs(a / b - 1) for a, b in zip(imp["affine"], adr["affine"]))
+    print("measured: affine strains", imp["affine"], adr["affine"], "apart", gap)
+    assert gap < 5e-3
 
 
 # ---------------------------------------------------------------- swelling_test.py --dim 3
@@ -185,7 +209,6 @@ def test_the_swelling_test_of_a_3d_box_records_x_y_z_and_the_volume(tmp_path):
 
 
 @pytest.mark.parametrize("args, message", [
-    (("--dim", "3", "--size-mm", "30", "30", "30"), "swelldem: solver = 'implicit' is out of range; allowed: adr when dim is 3"),
     (("--dim", "3", "--size-mm", "30", "30", "--solver", "adr"), "size_mm = "),
     (("--size-mm", "30", "30", "30"), "size_mm = "),
     (("--dim", "3", "--size-mm", "30", "30", "30", "--solver", "adr", "--boundary-x", "fixed"),
