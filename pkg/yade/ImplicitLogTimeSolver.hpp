@@ -101,6 +101,9 @@ public:
 	X(long, mechanismHolds, 0, swelldem_attr::Result, "Discs whose sliding contacts were taken as sticking (mechanismMove) so far, once a round [-]") \
 	X(long, factorizations, 0, swelldem_attr::Result, "Numeric Cholesky factorizations so far [-]")                                                    \
 	X(long, analyses, 0, swelldem_attr::Result, "Symbolic analyses (contact graph changes) so far [-]")                                               \
+	X(Real, factorSeconds, 0.0, swelldem_attr::Result, "Wall time spent in numeric Cholesky factorizations so far [s]")         \
+	X(Real, factorNonZeros, 0.0, swelldem_attr::Result,                                                                                              \
+	  "Entries of the Cholesky factor L of the last symbolic analysis (its fill-in; K's lower triangle has about 21 per 2D contact, 78 per 3D one) [-]") \
 	X(std::vector<int>, fallbackSteps, std::vector<int>(), swelldem_attr::Result,                                                                     \
 	  "Physical steps (1..nSteps) that Newton did not settle within fallbackIterations and dynamic relaxation finished [-]")                      \
 	X(std::vector<Real>, fallbackRatio, std::vector<Real>(), swelldem_attr::Result,                                                                  \
@@ -123,6 +126,9 @@ public:
 	  "Discs whose sliding contacts enter the tangent as sticking in the current round (mechanismMove) [-]")                                        \
 	X(std::vector<Real>, factoredValues, std::vector<Real>(), swelldem_attr::Internal,                                                                 \
 	  "Entries of the tangent that the current Cholesky factor was computed from (kept so that a reloaded scene factors the same) [N/m; N, N m with rotations]")       \
+	X(std::vector<Real>, factoredDrift, std::vector<Real>(), swelldem_attr::Internal,                                                                 \
+	  "The tangent's entries without the 3D sliding contacts' stiffness across their slip, when the current factor was made with some "      \
+	  "(empty otherwise): the reference of refactorTolerance [N/m; N, N m with rotations]")                                                     \
 	X(std::vector<Real>, factoredStiffness, std::vector<Real>(), swelldem_attr::Internal,                                                             \
 	  "kn, ks of each contact (in factoredGraph's order) in the tangent the current factor was computed from [N/m]")                            \
 	X(std::vector<LowRankColumn>, lowRankColumns, std::vector<LowRankColumn>(), swelldem_attr::Internal,                                           \
