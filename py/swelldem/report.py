@@ -454,21 +454,27 @@ def _structures(res):
 def plot_structure_stress(path, res):
     """structure_stress.png of a run with platens or bars: the platens' mean normal stress on the
     specimen per axis and the bars' largest and mean axial stress against time [MPa], compression
-    negative, with the bars' yield stress."""
+    negative, in their kinds' colours (COLORS), with the bars' yield stress (named only, when the
+    bars stay below a quarter of it)."""
     plt = _plt()
     t = np.array(res["times_days"])
     fig, ax = plt.subplots(figsize=(7, 4.5))
     cfg = res.get("config") or {}
     for axis in ("x", "y"):
         if cfg.get(f"boundary_{axis}", "free") != "free":
-            ax.semilogx(t, np.array(res[f"platen_stress_{axis}_Pa"]) / 1e6, "o-", ms=3,
-                        label=f"platens on the {axis} sides ({cfg[f'boundary_{axis}']}): mean normal stress")
+            ax.semilogx(t, np.array(res[f"platen_stress_{axis}_Pa"]) / 1e6, "o-" if axis == "x" else "^-", ms=3,
+                        color=COLORS["PLATEN"], label=f"platens on the {axis} sides ({cfg[f'boundary_{axis}']}): mean normal stress")
     if res.get("rebar"):
         bar = res["rebar"]
-        ax.semilogx(t, np.array(res["rebar_stress_max_Pa"]) / 1e6, "s-", ms=3, color="tab:red",
+        ax.semilogx(t, np.array(res["rebar_stress_max_Pa"]) / 1e6, "s-", ms=3, color=COLORS["STEEL"],
                     label=f"bars ({100 * bar['ratio']:g} %, {bar['n_bars']}): largest axial stress")
-        ax.semilogx(t, np.array(res["rebar_stress_mean_Pa"]) / 1e6, "s--", ms=3, mfc="none", color="tab:red", label="bars: mean axial stress")
-        ax.axhline(bar["yield_stress_Pa"] / 1e6, color="k", lw=0.8, ls=":", label=f"steel yield stress {bar['yield_stress_Pa'] / 1e6:g} MPa")
+        ax.semilogx(t, np.array(res["rebar_stress_mean_Pa"]) / 1e6, "s--", ms=3, mfc="none", color=COLORS["STEEL"],
+                    label="bars: mean axial stress")
+        fy = bar["yield_stress_Pa"] / 1e6
+        if np.nanmax(np.abs(res["rebar_stress_max_Pa"] or [0.0])) / 1e6 >= 0.25 * fy:
+            ax.axhline(fy, color="k", lw=0.8, ls=":", label=f"steel yield stress {fy:g} MPa")
+        else:  # a line far above the stresses would flatten them to the axis
+            ax.plot([], [], " ", label=f"steel yield stress {fy:g} MPa (above the plot)")
     ax.axhline(0, color="0.5", lw=0.5)
     ax.set(xlabel="time [day]", ylabel="stress [MPa] (tension > 0)", title=_title(res))
     ax.grid(True, which="both", lw=0.3)
