@@ -18,9 +18,9 @@ from ..plugin import YadeUnavailableError
 from .meso_scene import MAX_GAP_RATIO, YadeScene, set_contact_swelling, set_gel_pockets, to_yade
 from .scene import (BEHAVIOURS, SOLVERS, build_scene, check_solver_settings, concrete_ip2, contact_kind, disc, engines,
                     functor_kinds, kind_setting_names, kind_settings, make_solver, reset_keeping_tags,
-                    run_to_end, scene_law, solver_defaults, solver_setting_names, solver_settings)
+                    run_chunk_quietly, run_to_end, scene_law, solver_defaults, solver_setting_names, solver_settings)
 
 __all__ = ["BEHAVIOURS", "MAX_GAP_RATIO", "SOLVERS", "YadeScene", "YadeUnavailableError", "build_scene", "concrete_ip2", "contact_kind",
            "disc", "check_solver_settings", "engines", "functor_kinds", "kind_setting_names", "kind_settings",
-           "make_solver", "reset_keeping_tags", "run_to_end", "scene_law", "set_contact_swelling", "set_gel_pockets", "solver_defaults",
+           "make_solver", "reset_keeping_tags", "run_chunk_quietly", "run_to_end", "scene_law", "set_contact_swelling", "set_gel_pockets", "solver_defaults",
            "solver_setting_names", "solver_settings", "to_yade"]
