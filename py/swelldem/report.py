@@ -371,19 +371,42 @@ def run_kinetics(res):
     reference temperature, days [day], temperatures [K] of its history (empty: the reference
     temperature throughout), reference temperature [K], Uc [K], UL [K]), from results.json's kinds
     and temperature record; the scenario's kinetics at 20 C for a record without them."""
-    name = (SCENARIOS[res["scenario"]]["swelling_kinds"] or ("AGG",))[0]  # asr-coarse: the aggregates' gel pockets
+    name = (swelling_kinds(res) or ["MORTAR"])[0]
     k = (res.get("kinds") or {}).get(name) or {}
-    tau_c, tau_l, _ = KINETICS[SCENARIOS[res["scenario"]]["kinetics"]]
+    sc = SCENARIOS.get(res["scenario"])
+    tau_c, tau_l, _ = KINETICS[sc["kinetics"] if sc else "isr"]  # an own scene's kinds record their own (kinds' tauC, tauL)
     temp = ((res.get("temperature") or {}).get("per_kind") or {}).get(name) or {}
     return (float(k.get("tauC", tau_c)), float(k.get("tauL", tau_l)), list(temp.get("days") or []),
             list(temp.get("temperatures_K") or []), float(k.get("referenceTemperature", LARIVE_T0)),
             float(k.get("Uc", LARIVE_UC)), float(k.get("UL", LARIVE_UL)))
 
 
+def swelling_kinds(res):
+    """The kinds whose contacts swell in the run: the scenario's (asr-coarse: AGG, its gel pockets);
+    for a scene of one's own (a 'scenario' that is none of the paper's, swelldem.dem.standard_outputs)
+    the kinds its results.json records with swelling on and swellDispInf > 0."""
+    sc = SCENARIOS.get(res.get("scenario"))
+    if sc is not None:
+        return list(sc["swelling_kinds"] or ("AGG",))
+    return [n for n, k in (res.get("kinds") or {}).items() if k.get("swelling") and (k.get("swellDispInf") or 0) > 0]
+
+
+def run_eps_inf(res):
+    """The free swelling strain at infinity of the run's swelling phase [-]: the scenario's eps_inf
+    (config), or for a scene of one's own its swelling kind's swellDispInf over 2 R_mean (the
+    paper's micro-macro rule read backwards)."""
+    cfg = res.get("config") or {}
+    if "eps_inf" in cfg or res.get("scenario") in SCENARIOS:
+        return cfg.get("eps_inf", EPS_INF)
+    names = swelling_kinds(res)
+    r_mean = res.get("r_mean_m")
+    return res["kinds"][names[0]]["swellDispInf"] / (2 * r_mean) if names and r_mean else 0.0
+
+
 def run_free_swelling(res, t, t0):
     """The free swelling strain [-] of the run's swelling phase at times t [day] since t0 [day], under
-    the run's own kinetics and temperature history: eps_inf (xi(t) - xi(t0))."""
-    eps_inf = (res.get("config") or {}).get("eps_inf", EPS_INF)
+    the run's own kinetics and temperature history: eps_inf (xi(t) - xi(t0)) (run_eps_inf)."""
+    eps_inf = run_eps_inf(res)
     tau_c, tau_l, days, temps, T0, Uc, UL = run_kinetics(res)
     xi = larive_xi_under(np.append(np.asarray(t, dtype=float), t0), tau_c, tau_l, days, temps, T0, Uc, UL)
     return eps_inf * (xi[:-1] - xi[-1])
@@ -395,7 +418,10 @@ def _free_swelling_curve(ax, res, t_last, specimen_max):
     the gel pockets swell), so that the specimen's curves keep the height of the plot. Then the
     legend of both axes."""
     cfg = res.get("config") or {}
-    eps_inf = cfg.get("eps_inf", EPS_INF)
+    if not swelling_kinds(res):  # a scene of one's own in which nothing swells
+        ax.legend(fontsize=7, loc="upper left")
+        return
+    eps_inf = run_eps_inf(res)
     t0 = (res.get("solver_settings") or {}).get("tStart", cfg.get("t_start_days", 1.0))  # --solver-param tStart= has the last word
     tau_c, tau_l, days, temps, T0, Uc, UL = run_kinetics(res)
     tt = np.geomspace(t0, t_last, 200)
@@ -407,7 +433,7 @@ def _free_swelling_curve(ax, res, t_last, specimen_max):
         at = f"under the run's temperature history ($\\tau_c$ {tau_c:g} d, $\\tau_L$ {tau_l:g} d at {T0 - 273.15:g} C)"
     else:
         at = f"$\\tau_c$ {tau_c:g} d, $\\tau_L$ {tau_l:g} d"
-    phase = "gel pockets" if res["scenario"] == "asr-coarse" else " and ".join(SCENARIOS[res["scenario"]]["swelling_kinds"]) + " contacts"
+    phase = "gel pockets" if res["scenario"] == "asr-coarse" else " and ".join(swelling_kinds(res)) + " contacts"
     apart = specimen_max == specimen_max and specimen_max < 0.2 * free.max()
     fax = ax.twinx() if apart else ax
     fax.semilogx(tt, free, "--", color="k", lw=1,

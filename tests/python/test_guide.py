@@ -115,6 +115,28 @@ def test_the_tutorial_runs_and_writes_its_table_and_plots(work):
         with open(out / png, "rb") as f:
             assert f.read(8) == b"\x89PNG\r\n\x1a\n"
     assert "tutorial: 18 steps" in p.stdout
+    # swelldem.dem.standard_outputs: the swelling test's outputs of the same run, against the
+    # tutorial's own recording (its own loop over the contacts, 6 digits) and the ParaView files
+    res = json.loads((out / "results.json").read_text())
+    assert res["status"] == "finished" and res["scenario"] == "tutorial, mortar swelling"
+    assert res["times_days"] == pytest.approx(times, rel=1e-5)
+    assert [(x + y) / 2 for x, y in zip(res["swelling_strain_x"], res["swelling_strain_y"])] == pytest.approx(eps, rel=1e-5, abs=1e-11)
+    for name in ("MORTAR", "ITZ", "AGG"):  # the tutorial counts every broken contact, born broken ones too
+        d = res["per_kind"][name]
+        assert [b + n for b, n in zip(d["broken"], d["born_broken"])] == [r[col[f"broken {name} [-]"]] for r in rows]
+    last = ET.parse(out / "vtk" / "contacts.pvd").getroot().findall("Collection/DataSet")[-1]
+    assert float(last.get("timestep")) == pytest.approx(3650.0)
+    cells = read_vtp(out / "vtk" / last.get("file"))[1]
+    assert int(((cells["kindId"] == 1) & (cells["broken"] == 1) & (cells["bonded"] == 1)).sum()) == res["per_kind"]["ITZ"]["broken"][-1]
+    with open(out / "curves.csv") as f:
+        assert len(list(csv.reader(f))) == len(times) + 1
+    table = (out / "table.md").read_text()
+    assert table.startswith("# tutorial, mortar swelling, viscoelastic, damage on")
+    itz = res["per_kind"]["ITZ"]["broken"][-1]
+    assert f"| ITZ | {res['n_contacts_by_kind']['ITZ']} |" in table and f"| {itz} (" in table
+    for png in ("swelling_strain.png", "unbalanced.png", "force_quantiles.png", "crack_map.png", "crack_map_100d.png", "crack_map_200d.png"):
+        with open(out / png, "rb") as f:
+            assert f.read(8) == b"\x89PNG\r\n\x1a\n", png
 
 
 def read_vtp(path):

@@ -345,3 +345,55 @@ def export_vtk(out, step, time_days, bonded=None, assembly=None):
     series = VtkSeries(os.path.join(out, "vtk"), bonded, **cells)
     series.export(step, time_days)
     return series
+
+
+def standard_outputs(out, assembly, yscene, solver, name="own scene", vtk_every=0):
+    """Gives a scene of one's own (built with swelldem.dem.to_yade, before its run) the outputs of
+    scripts/swelling_test.py in the folder `out` (made if missing): after every converged step
+    results.json, curves.csv, plot_data.txt and contact_breaks.npz (StepRecorder), the ParaView
+    files every vtk_every steps (0: the last step only) into out/vtk/; after the last step also
+    table.md / table.csv, swelling_strain.png (with the free swelling of the scene's swelling
+    kind: swellDispInf / (2 R_mean) times Larive's xi at its tauC, tauL), unbalanced.png,
+    force_quantiles.png, crack_map.png and, with damage, crack_map_<day>d.png at the swelling
+    kind's tau_L and 2 tau_L; assembly.npz at once. name: the run's name in titles and tables
+    (results.json 'scenario'). Call it after setting solver.stepHook to one's own recording, if
+    any: it becomes the solver's stepHook and calls that one after its own. Returns the
+    StepRecorder; its `res` is the results dict."""
+    from ..paper import KIND_NAMES as _names
+    from ..report import write_all
+    from .scene import functor_kinds, kind_settings, solver_settings
+    yade, _ = _yade()
+    os.makedirs(out, exist_ok=True)
+    assembly.save(os.path.join(out, "assembly.npz"))
+    kinds = functor_kinds(yscene.ip2)
+    settings = {n: kind_settings(k) for n, k in kinds.items()}
+    behaviours = {v["behaviour"] for n, v in settings.items() if n in ("MORTAR", "ITZ")} or {"elastic"}
+    res = {"scenario": name, "behaviour": "viscoelastic" if "viscoelastic" in behaviours else sorted(behaviours)[0],
+           "damage": any(v.get("damage") for v in settings.values()), "solver": "implicit" if "Implicit" in type(solver).__name__ else "adr",
+           "tolerance": solver.tolerance, "config": {"size_mm": [assembly.width_m * 1e3, assembly.height_m * 1e3]},
+           "solver_settings": solver_settings(solver), "kinds": settings, "d_inf_m": None, "r_mean_m": float(assembly.r.mean()),
+           "n_particles": int(len(assembly.x)), "n_contacts_by_kind": {n: int((assembly.kind == k).sum()) for k, n in enumerate(_names)},
+           "times_days": [], "swelling_strain_x": [], "swelling_strain_y": [], "swelling_strain_area": [],
+           "platen_stress_x_Pa": [], "platen_stress_y_Pa": [], "platen_disp_x_m": [], "platen_disp_y_m": [], "unbalanced_ratio": [],
+           "iterations_per_step": [], "step_at_round_off": [], "round_off_ratio": [], "iterations": 0, "newton_iterations": 0,
+           "relaxation_iterations": 0, "per_kind": {n: {"fn_p05_kN": [], "fn_p95_kN": [], "broken": [], "born_broken": []} for n in _names},
+           "temperature": {"source": "the kinds' own", "per_kind": {n: {"days": list(k.temperatureDays), "temperatures_K": list(k.temperatures)}
+                                                                    for n, k in kinds.items()}},
+           "status": "running", "wall_s": 0.0}
+    swelling = [v for v in settings.values() if v.get("swelling") and (v.get("swellDispInf") or 0) > 0]
+    res["d_inf_m"] = float(swelling[0]["swellDispInf"]) if swelling else 0.0
+    rec = StepRecorder(assembly, yscene, solver, res, out, vtk_every=vtk_every)
+    own = solver.stepHook
+
+    def hook():
+        rec()
+        if len(res["times_days"]) >= int(solver.nSteps):  # the last step: the run's figures and tables
+            res["status"] = "finished"
+            rec.export_vtk()
+            write_results(out, res)
+            write_all(out, res, assembly, broken_contacts(rec.bonded))
+        if own is not None:
+            own()
+
+    solver.stepHook = hook
+    return rec
