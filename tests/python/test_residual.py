@@ -271,3 +271,12 @@ def test_residual_csv_linear_expansion_and_lower_bounds(small_residual_run):
                     assert curves[which][name]["status"] != "done"  # a test that reached its drop saw its peak
     assert any(flags) and not all(flags)  # this run has both kinds: the flag is not constant
     assert (out / "residual_vs_expansion.png").stat().st_size > 20000
+
+
+def test_residual_run_files_are_named_in_the_guide(small_residual_run):
+    """Every file of a residual run and of its swelling run is named in docs/guide.md (sections 2,
+    3 and 9)."""
+    from test_guide import documented_names, undocumented
+    out, _ = small_residual_run
+    patterns = documented_names(2, 3, 9)
+    assert undocumented(out, patterns) == [] and undocumented(out / "swelling", patterns) == []
