@@ -81,7 +81,7 @@ for sc, beh, seed in runs:
                      **{q: a.get(q, float("nan")) for q in QUANTITIES}, "SDI0": a.get("SDI0"), "PDI0": a.get("PDI0"),
                      "sdt_status": a.get("sdt_status"), "broken_before_test": a.get("broken_before_compression"),
                      "n_contacts": a.get("n_contacts"), "wall_s": r["wall_s"],
-                     # the mean of the x and y strains (residual.json from before it held it: area strain / 2)
+                     # the mean of the x and y strains (a residual.json without expansion_linear: from strain_x, strain_y)
                      "expansion_linear_pct": 100 * a.get("expansion_linear", 0.5 * (a["strain_x"] + a["strain_y"])),
                      "fc_lower_bound": bool(a.get("fc_lower_bound") or a.get("fc0_lower_bound"))})
 if not rows:
