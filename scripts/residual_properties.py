@@ -6,9 +6,11 @@ undamaged specimen of the same age.
     scripts/yade-swelldem -j 1 -n -x scripts/residual_properties.py --scenario isr --behaviour viscoelastic \\
         --size-mm 20 20 --seed 1 --test-ages 100 300 3650 --out out/residual/isr-ve-1
 
-Writes DIR/residual.json (per tested age: age_days, expansion, E_rel, ft_rel, fc_rel, SDI, PDI and
-the undamaged reference's, with the curves), DIR/residual.csv, DIR/residual_curves.png and
-DIR/swelling/ (the swelling run's own results, scenario.run). Every swelling-test option of
+Writes DIR/residual.json (per tested age: age_days, expansion (area strain) and expansion_linear
+(mean of the x and y strains), E_rel, ft_rel, fc_rel, SDI, PDI and the undamaged reference's,
+lower-bound flags of the strengths, with the curves), DIR/residual.csv, DIR/residual_curves.png,
+DIR/residual_vs_expansion.png (E/E0, f/f0 and SDI against the linear expansion) and DIR/swelling/
+(the swelling run's own results, scenario.run). Every swelling-test option of
 scripts/swelling_test.py is accepted (--help). Bad values stop before any work with
 'swelldem: <option> = <value> is out of range; allowed: <range>' and exit status 2.
 """
@@ -90,13 +92,35 @@ times = np.asarray(swell["times_days"])
 
 
 def expansion_at(age):
+    """(area strain, x strain, y strain) [-] of the swelling run at `age` [day]."""
     k = int(np.argmin(np.abs(times - age)))
     ex, ey = swell["swelling_strain_x"][k], swell["swelling_strain_y"][k]
     return float((1 + ex) * (1 + ey) - 1), float(ex), float(ey)
 
 
-def run_tests(prepare, age, fc_ref=None, e_ref=None):
-    """Each test on a fresh copy (prepare() fills O)."""
+def linear_expansion_at(age):
+    """The linear expansion [-] of the swelling run at `age` [day]: the mean of its x and y
+    strains, what a laboratory reports as the mean length change of a prism in its two
+    directions (about half the area strain, `expansion`)."""
+    _, ex, ey = expansion_at(age)
+    return 0.5 * (ex + ey)
+
+
+def ending(r):
+    """How a test ended, in words for its progress line."""
+    if r["status"] == "done":
+        return "done"
+    if r.get("peak_lower_bound"):
+        return f"{r['status']} before its peak: its peak stress is a lower bound of the strength (flagged in residual.csv)"
+    if "peak_Pa" in r:
+        return f"{r['status']} past its peak (the specimen has failed): the normal end of a strength test"
+    if "SDI" in r:
+        return f"{r['status']} after {r['cycles_done']} of {args.sdt_cycles} cycles: no SDI or PDI at this age"
+    return r["status"]
+
+
+def run_tests(prepare, age, which, fc_ref=None, e_ref=None):
+    """Each test on a fresh copy (prepare() fills O); which: the specimen, named in the progress lines."""
     res = {}
     for name in ("tension", "compression", "sdt"):
         if name not in args.tests:
@@ -120,7 +144,7 @@ def run_tests(prepare, age, fc_ref=None, e_ref=None):
             if name == "compression" and fc_ref is None:
                 fc_ref, e_ref = r["peak_Pa"], r["modulus_Pa"]
         res[name] = r
-        print(f"swelldem residual: age {age:g} d {name}: {r['status']}, {r['steps']} steps, {r['iterations']} iterations, "
+        print(f"swelldem residual: age {age:g} d, {which}, {name}: {ending(r)}; {r['steps']} steps, {r['iterations']} iterations, "
               f"{r['wall_s']:.1f} s", flush=True)
     return res
 
@@ -143,7 +167,7 @@ def reference(age):
         if cached["settings"] == dict(settings, age=age):
             print(f"swelldem residual: age {age:g} d undamaged specimen from {path}", flush=True)
             return cached["results"]
-    res = run_tests(lambda: residual.fresh_specimen(assembly, kinds), age)
+    res = run_tests(lambda: residual.fresh_specimen(assembly, kinds), age, "reference (undamaged specimen, not swollen)")
     if args.reference_cache:
         os.makedirs(args.reference_cache, exist_ok=True)
         with open(path, "w") as f:
@@ -156,8 +180,10 @@ for age in ages:
     ref = reference(age)
     fc0, e0 = (ref["compression"]["peak_Pa"], ref["compression"]["modulus_Pa"]) if "compression" in ref else (None, None)
     path = residual.AgeSaver.path(test.out, age)
-    dmg = run_tests(lambda: residual.load_copy(path), age, fc_ref=fc0, e_ref=e0)
     area, ex, ey = expansion_at(age)
+    dmg = run_tests(lambda: residual.load_copy(path), age,
+                    f"swollen specimen (linear expansion {100 * linear_expansion_at(age):.3f} %, area {100 * area:.3f} %)",
+                    fc_ref=fc0, e_ref=e0)
     entry = {"age_days": age, "expansion": area, "strain_x": ex, "strain_y": ey}
     for key, name in (("E", "compression"), ("fc", "compression"), ("Et", "tension"), ("ft", "tension")):
         if name in ref:
@@ -172,6 +198,11 @@ for age in ages:
     for name in dmg:
         entry[f"broken_before_{name}"] = dmg[name]["broken"][0]
     entry["n_contacts"] = int(len(assembly.kind))
+    entry.update(expansion_linear=linear_expansion_at(age), expansion_area_pct=100 * area, expansion_linear_pct=100 * linear_expansion_at(age))
+    for key, name in (("fc", "compression"), ("ft", "tension")):  # a peak the test stopped short of: a lower bound
+        if name in ref:
+            entry[f"{key}0_lower_bound"] = bool(ref[name].get("peak_lower_bound", False))
+            entry[f"{key}_lower_bound"] = bool(dmg[name].get("peak_lower_bound", False))
     rows.append(entry)
     per_age.append({"age_days": age, "reference": ref, "swollen": dmg})
 
@@ -203,7 +234,8 @@ for j, name in enumerate(tests):
     for c, pa in zip(colors, per_age):
         for which, ls in (("reference", "--"), ("swollen", "-")):
             r = pa[which][name]
-            lab = f"{pa['age_days']:g} d " + ("undamaged" if which == "reference" else f"swollen ({expansion_at(pa['age_days'])[0] * 100:.3f} %)")
+            lab = f"{pa['age_days']:g} d " + ("undamaged" if which == "reference" else
+                                              f"swollen ({linear_expansion_at(pa['age_days']) * 100:.3f} % linear)")
             ax.plot(np.asarray(r["strain"]) * 1e6, np.asarray(r["stress_Pa"]) / 1e6, ls, color=c, label=lab, lw=1.2)
     ax.set_xlabel("strain (1e-6)" + (", compression positive" if name != "tension" else ""))
     ax.set_ylabel("stress (MPa)")
@@ -213,4 +245,7 @@ axes[0, 0].legend(fontsize=7)
 fig.suptitle(f"{test.scenario}, {test.behaviour}, {test.size_mm[0]:g} x {test.size_mm[1]:g} mm, seed {test.seed}")
 fig.tight_layout()
 fig.savefig(os.path.join(out, "residual_curves.png"), dpi=110)
+plt.close(fig)
+residual.plot_against_expansion(os.path.join(out, "residual_vs_expansion.png"), rows,
+                                f"{test.scenario}, {test.behaviour}, {test.size_mm[0]:g} x {test.size_mm[1]:g} mm, seed {test.seed}")
 print(f"swelldem residual: wrote {os.path.join(out, 'residual.json')} ({time.time() - t0:.0f} s)")

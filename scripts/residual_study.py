@@ -80,7 +80,10 @@ for sc, beh, seed in runs:
         rows.append({"scenario": sc, "behaviour": beh, "seed": seed, "age_days": a["age_days"], "expansion_pct": 100 * a["expansion"],
                      **{q: a.get(q, float("nan")) for q in QUANTITIES}, "SDI0": a.get("SDI0"), "PDI0": a.get("PDI0"),
                      "sdt_status": a.get("sdt_status"), "broken_before_test": a.get("broken_before_compression"),
-                     "n_contacts": a.get("n_contacts"), "wall_s": r["wall_s"]})
+                     "n_contacts": a.get("n_contacts"), "wall_s": r["wall_s"],
+                     # the mean of the x and y strains (a residual.json without expansion_linear: from strain_x, strain_y)
+                     "expansion_linear_pct": 100 * a.get("expansion_linear", 0.5 * (a["strain_x"] + a["strain_y"])),
+                     "fc_lower_bound": bool(a.get("fc_lower_bound") or a.get("fc0_lower_bound"))})
 if not rows:
     sys.exit("no runs found in " + args.out)
 
@@ -93,9 +96,10 @@ MARKERS = {"elastic": "o", "viscoelastic": "s"}
 for q, label in QUANTITIES.items():
     with open(os.path.join(args.out, f"{q}.csv"), "w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(["scenario", "behaviour", "seed", "age_days", "expansion_pct", q])
+        w.writerow(["scenario", "behaviour", "seed", "age_days", "expansion_pct", q, "expansion_linear_pct"])
         for r in rows:
-            w.writerow([r["scenario"], r["behaviour"], r["seed"], r["age_days"], f"{r['expansion_pct']:.4f}", f"{r[q]:.4f}"])
+            w.writerow([r["scenario"], r["behaviour"], r["seed"], r["age_days"], f"{r['expansion_pct']:.4f}", f"{r[q]:.4f}",
+                        f"{r['expansion_linear_pct']:.4f}"])
     fig, ax = plt.subplots(figsize=(6.4, 4.6))
     for sc in args.scenarios:
         for beh in args.behaviours:
@@ -145,7 +149,8 @@ with open(os.path.join(args.out, "study.csv"), "w", newline="") as f:
     w.writerows(rows)
 # Means per scenario, behaviour and age (the docs' table)
 with open(os.path.join(args.out, "summary.md"), "w") as f:
-    f.write("| scenario | behaviour | age (d) | expansion (%) | E/E0 | f_c/f_c0 | f_t/f_t0 | SDI | PDI | SDT done |\n|---|---|---|---|---|---|---|---|---|---|\n")
+    f.write("| scenario | behaviour | age (d) | area expansion (%) | linear expansion (%) | E/E0 | f_c/f_c0 | f_t/f_t0 | SDI | PDI | SDT done | "
+            "f_c a lower bound |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n")
     for sc in args.scenarios:
         for beh in args.behaviours:
             for a in sorted({r["age_days"] for r in rows if r["scenario"] == sc}):
@@ -158,6 +163,7 @@ with open(os.path.join(args.out, "summary.md"), "w") as f:
                     v = v[np.isfinite(v)]
                     return (fmt.format(v.mean()) + " (" + fmt.format(v.min()) + "-" + fmt.format(v.max()) + ")") if len(v) else "-"
                 done = sum(1 for r in sel if r["sdt_status"] == "done")
-                f.write(f"| {sc} | {beh} | {a:g} | {ms('expansion_pct', '{:.3f}')} | {ms('E_rel')} | {ms('fc_rel')} | {ms('ft_rel')} | "
-                        f"{ms('SDI', '{:.3f}')} | {ms('PDI', '{:.3f}')} | {done}/{len(sel)} |\n")
+                low = sum(1 for r in sel if r["fc_lower_bound"])
+                f.write(f"| {sc} | {beh} | {a:g} | {ms('expansion_pct', '{:.3f}')} | {ms('expansion_linear_pct', '{:.3f}')} | {ms('E_rel')} | "
+                        f"{ms('fc_rel')} | {ms('ft_rel')} | {ms('SDI', '{:.3f}')} | {ms('PDI', '{:.3f}')} | {done}/{len(sel)} | {low}/{len(sel)} |\n")
 print(f"wrote {len(rows)} rows, {len(QUANTITIES)} PNG and CSV into {args.out}")

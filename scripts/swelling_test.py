@@ -50,5 +50,6 @@ print(f"swelling_test: {test.scenario} {test.behaviour} damage {'on' if test.dam
       f"{res['n_particles']} particles, strain x {res['swelling_strain_x'][-1] * 1e6:.0f}e-6 y {res['swelling_strain_y'][-1] * 1e6:.0f}e-6{z}, "
       f"iterations {res['iterations']}, wall {res['wall_s']:.1f} s")
 print(open(os.path.join(test.out, "table.md")).read())
-drawn = "" if test.dim == 3 else ", crack_map.png"
-print(f"results, tables and plots in {test.out}/ (swelling_strain.png, unbalanced.png, force_quantiles.png{drawn}, vtk/)")
+# what the folder holds, listed from it: every file the run wrote (docs/guide.md, section 2, says what each is)
+written = sorted(n + "/" if os.path.isdir(os.path.join(test.out, n)) else n for n in os.listdir(test.out))
+print(f"results, tables and plots in {test.out}/: {', '.join(written)} (docs/guide.md, section 2)")

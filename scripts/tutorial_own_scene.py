@@ -7,7 +7,9 @@ A 20 x 20 mm concrete with 30 % aggregates, ISR swelling of the mortar only (the
 aggregates do not swell), aging viscoelastic mortar and ITZ with per-kind tensile strengths,
 the implicit solver at 5 steps a decade from 1 to 3650 days. Writes OUT/mesostructure.png,
 OUT/history.csv (one row per physical step, units in the header) and OUT/history.png (strain
-and broken contacts against time). About 4 s on one core.
+and broken contacts against time), and through swelldem.dem.standard_outputs the files of
+scripts/swelling_test.py (results.json, curves.csv, tables, figures, crack maps, vtk/).
+About 8 s on one core.
 """
 # --- 0. Command line: only the output folder --------------------------------------------------
 import argparse
@@ -75,6 +77,8 @@ def record():
 
 
 solver.stepHook = record
+# and the outputs of scripts/swelling_test.py: results.json, curves.csv, tables, figures, ParaView files
+dem.standard_outputs(args.out, assembly, scene, solver, name="tutorial, mortar swelling", vtk_every=5)
 dem.run_to_end(solver)
 
 # --- 6. Results: a CSV with units in the header, and a plot ------------------------------------

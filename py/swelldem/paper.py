@@ -17,6 +17,8 @@ KIND_IDS = {name: k for k, name in enumerate(KIND_NAMES)}
 #: Kinds swelldem adds for the conditions of structures (not the paper's): platens
 #: (swelldem.dem.platens), reinforcing steel and its bond to the concrete (swelldem.dem.rebar).
 STRUCTURE_KIND_IDS = {"PLATEN": 3, "STEEL": 4, "BOND": 5}
+#: Every kind name by its id (kindId), the paper's three and the structures'.
+KIND_NAME_OF_ID = {**{k: name for k, name in enumerate(KIND_NAMES)}, **{k: name for name, k in STRUCTURE_KIND_IDS.items()}}
 
 #: Table 3.3: B3 basic-creep coefficients (q1, q2, q3, q4) [1e-6/MPa = 1e-12/Pa] of each material.
 B3_Q = {"mortar": (6.7, 108.1, 44.2, 14.3), "concrete": (9.0, 23.7, 46.6, 5.1), "itz": (19.3, 194.6, 72.9, 7.5)}

@@ -10,12 +10,21 @@ import time
 
 import numpy as np
 
-from .paper import (BEHAVIOUR_KEYS, BEHAVIOUR_WORDS, EPS_INF, KIND_NAMES, KINETICS, LARIVE_T0, LARIVE_UC, LARIVE_UL, SCENARIOS,
-                    SPECIMEN_SIZE_MM, larive_xi_under,
+from .paper import (BEHAVIOUR_KEYS, BEHAVIOUR_WORDS, EPS_INF, KIND_NAME_OF_ID, KIND_NAMES, KINETICS, LARIVE_T0, LARIVE_UC, LARIVE_UL,
+                    SCENARIOS, SPECIMEN_SIZE_MM, STRUCTURE_KIND_IDS, larive_xi_under,
                     TABLE_FORCES, VARIATION)
 
 LABEL = {"isr": "ISR", "asr-fine": "ASR-fine agg.", "asr-coarse": "ASR-coarse agg."}
-COLORS = {"MORTAR": "tab:blue", "ITZ": "tab:red", "AGG": "tab:green"}
+#: Colour of each contact kind in the plots and crack maps; the structures' kinds each their own, so
+#: that a bar or a broken bond is never taken for a mortar crack.
+COLORS = {"MORTAR": "tab:blue", "ITZ": "tab:red", "AGG": "tab:green", "PLATEN": "tab:purple", "STEEL": "0.25", "BOND": "darkorange"}
+
+
+def kinds_of(res):
+    """The contact kinds of a run's per-kind results: the paper's three, then the structures' kinds
+    (PLATEN, STEEL, BOND) that its scene has, in kindId order."""
+    per_kind = res.get("per_kind") or {}
+    return list(KIND_NAMES) + [name for name in STRUCTURE_KIND_IDS if name in per_kind]
 
 
 
@@ -129,13 +138,13 @@ def _plt():
     return plt
 
 
-def final_rows(res):
+def final_rows(res, kinds=None):
     """Per kind at the last step: 5 % and 95 % normal-force quantiles [kN], broken contacts (of the
     n_contacts bonded at the start) and their share, and the contacts made during the run (born
     broken; None in a results.json written before they were counted apart, whose 'broken' then
-    includes them)."""
+    includes them). kinds: the kinds' names (default kinds_of(res): the structures' too)."""
     rows = []
-    for name in KIND_NAMES:
+    for name in kinds or kinds_of(res):
         d = res["per_kind"][name]
         n = res["n_contacts_by_kind"].get(name, 0)
         broken = d["broken"][-1] if d["broken"] else 0
@@ -258,6 +267,12 @@ def write_tables(out, res):
               + "Broken: contacts bonded at the start that broke (share of the kind's contacts). New contacts: "
               "contacts made during the run by discs coming into touch, born broken (compression only), not counted as broken. "
               "Variations to a reference run (the paper's Table 3.7 form): scripts/compare_runs.py or scripts/paper_study.py."]
+    structures = [k for k in kinds_of(res) if k in STRUCTURE_KIND_IDS]
+    if structures:
+        what = {"PLATEN": "PLATEN: platen-specimen contacts (elastic, never break)",
+                "STEEL": "STEEL: contacts along a bar (elastic, never break)",
+                "BOND": "BOND: bar-concrete contacts (the ITZ's law and strength unless --kind-param BOND.<attribute> sets them)"}
+        lines += ["", "Structures' contacts: " + "; ".join(what[k] for k in structures) + "."]
     state = run_state(res)
     if state != "finished":
         lines += ["", f"Run not finished ({state}): the numbers are those of its last step done."]
@@ -356,19 +371,42 @@ def run_kinetics(res):
     reference temperature, days [day], temperatures [K] of its history (empty: the reference
     temperature throughout), reference temperature [K], Uc [K], UL [K]), from results.json's kinds
     and temperature record; the scenario's kinetics at 20 C for a record without them."""
-    name = (SCENARIOS[res["scenario"]]["swelling_kinds"] or ("AGG",))[0]  # asr-coarse: the aggregates' gel pockets
+    name = (swelling_kinds(res) or ["MORTAR"])[0]
     k = (res.get("kinds") or {}).get(name) or {}
-    tau_c, tau_l, _ = KINETICS[SCENARIOS[res["scenario"]]["kinetics"]]
+    sc = SCENARIOS.get(res["scenario"])
+    tau_c, tau_l, _ = KINETICS[sc["kinetics"] if sc else "isr"]  # an own scene's kinds record their own (kinds' tauC, tauL)
     temp = ((res.get("temperature") or {}).get("per_kind") or {}).get(name) or {}
     return (float(k.get("tauC", tau_c)), float(k.get("tauL", tau_l)), list(temp.get("days") or []),
             list(temp.get("temperatures_K") or []), float(k.get("referenceTemperature", LARIVE_T0)),
             float(k.get("Uc", LARIVE_UC)), float(k.get("UL", LARIVE_UL)))
 
 
+def swelling_kinds(res):
+    """The kinds whose contacts swell in the run: the scenario's (asr-coarse: AGG, its gel pockets);
+    for a scene of one's own (a 'scenario' that is none of the paper's, swelldem.dem.standard_outputs)
+    the kinds its results.json records with swelling on and swellDispInf > 0."""
+    sc = SCENARIOS.get(res.get("scenario"))
+    if sc is not None:
+        return list(sc["swelling_kinds"] or ("AGG",))
+    return [n for n, k in (res.get("kinds") or {}).items() if k.get("swelling") and (k.get("swellDispInf") or 0) > 0]
+
+
+def run_eps_inf(res):
+    """The free swelling strain at infinity of the run's swelling phase [-]: the scenario's eps_inf
+    (config), or for a scene of one's own its swelling kind's swellDispInf over 2 R_mean (the
+    paper's micro-macro rule read backwards)."""
+    cfg = res.get("config") or {}
+    if "eps_inf" in cfg or res.get("scenario") in SCENARIOS:
+        return cfg.get("eps_inf", EPS_INF)
+    names = swelling_kinds(res)
+    r_mean = res.get("r_mean_m")
+    return res["kinds"][names[0]]["swellDispInf"] / (2 * r_mean) if names and r_mean else 0.0
+
+
 def run_free_swelling(res, t, t0):
     """The free swelling strain [-] of the run's swelling phase at times t [day] since t0 [day], under
-    the run's own kinetics and temperature history: eps_inf (xi(t) - xi(t0))."""
-    eps_inf = (res.get("config") or {}).get("eps_inf", EPS_INF)
+    the run's own kinetics and temperature history: eps_inf (xi(t) - xi(t0)) (run_eps_inf)."""
+    eps_inf = run_eps_inf(res)
     tau_c, tau_l, days, temps, T0, Uc, UL = run_kinetics(res)
     xi = larive_xi_under(np.append(np.asarray(t, dtype=float), t0), tau_c, tau_l, days, temps, T0, Uc, UL)
     return eps_inf * (xi[:-1] - xi[-1])
@@ -380,7 +418,10 @@ def _free_swelling_curve(ax, res, t_last, specimen_max):
     the gel pockets swell), so that the specimen's curves keep the height of the plot. Then the
     legend of both axes."""
     cfg = res.get("config") or {}
-    eps_inf = cfg.get("eps_inf", EPS_INF)
+    if not swelling_kinds(res):  # a scene of one's own in which nothing swells
+        ax.legend(fontsize=7, loc="upper left")
+        return
+    eps_inf = run_eps_inf(res)
     t0 = (res.get("solver_settings") or {}).get("tStart", cfg.get("t_start_days", 1.0))  # --solver-param tStart= has the last word
     tau_c, tau_l, days, temps, T0, Uc, UL = run_kinetics(res)
     tt = np.geomspace(t0, t_last, 200)
@@ -392,7 +433,7 @@ def _free_swelling_curve(ax, res, t_last, specimen_max):
         at = f"under the run's temperature history ($\\tau_c$ {tau_c:g} d, $\\tau_L$ {tau_l:g} d at {T0 - 273.15:g} C)"
     else:
         at = f"$\\tau_c$ {tau_c:g} d, $\\tau_L$ {tau_l:g} d"
-    phase = "gel pockets" if res["scenario"] == "asr-coarse" else " and ".join(SCENARIOS[res["scenario"]]["swelling_kinds"]) + " contacts"
+    phase = "gel pockets" if res["scenario"] == "asr-coarse" else " and ".join(swelling_kinds(res)) + " contacts"
     apart = specimen_max == specimen_max and specimen_max < 0.2 * free.max()
     fax = ax.twinx() if apart else ax
     fax.semilogx(tt, free, "--", color="k", lw=1,
@@ -439,21 +480,27 @@ def _structures(res):
 def plot_structure_stress(path, res):
     """structure_stress.png of a run with platens or bars: the platens' mean normal stress on the
     specimen per axis and the bars' largest and mean axial stress against time [MPa], compression
-    negative, with the bars' yield stress."""
+    negative, in their kinds' colours (COLORS), with the bars' yield stress (named only, when the
+    bars stay below a quarter of it)."""
     plt = _plt()
     t = np.array(res["times_days"])
     fig, ax = plt.subplots(figsize=(7, 4.5))
     cfg = res.get("config") or {}
     for axis in ("x", "y"):
         if cfg.get(f"boundary_{axis}", "free") != "free":
-            ax.semilogx(t, np.array(res[f"platen_stress_{axis}_Pa"]) / 1e6, "o-", ms=3,
-                        label=f"platens on the {axis} sides ({cfg[f'boundary_{axis}']}): mean normal stress")
+            ax.semilogx(t, np.array(res[f"platen_stress_{axis}_Pa"]) / 1e6, "o-" if axis == "x" else "^-", ms=3,
+                        color=COLORS["PLATEN"], label=f"platens on the {axis} sides ({cfg[f'boundary_{axis}']}): mean normal stress")
     if res.get("rebar"):
         bar = res["rebar"]
-        ax.semilogx(t, np.array(res["rebar_stress_max_Pa"]) / 1e6, "s-", ms=3, color="tab:red",
+        ax.semilogx(t, np.array(res["rebar_stress_max_Pa"]) / 1e6, "s-", ms=3, color=COLORS["STEEL"],
                     label=f"bars ({100 * bar['ratio']:g} %, {bar['n_bars']}): largest axial stress")
-        ax.semilogx(t, np.array(res["rebar_stress_mean_Pa"]) / 1e6, "s--", ms=3, mfc="none", color="tab:red", label="bars: mean axial stress")
-        ax.axhline(bar["yield_stress_Pa"] / 1e6, color="k", lw=0.8, ls=":", label=f"steel yield stress {bar['yield_stress_Pa'] / 1e6:g} MPa")
+        ax.semilogx(t, np.array(res["rebar_stress_mean_Pa"]) / 1e6, "s--", ms=3, mfc="none", color=COLORS["STEEL"],
+                    label="bars: mean axial stress")
+        fy = bar["yield_stress_Pa"] / 1e6
+        if np.nanmax(np.abs(res["rebar_stress_max_Pa"] or [0.0])) / 1e6 >= 0.25 * fy:
+            ax.axhline(fy, color="k", lw=0.8, ls=":", label=f"steel yield stress {fy:g} MPa")
+        else:  # a line far above the stresses would flatten them to the axis
+            ax.plot([], [], " ", label=f"steel yield stress {fy:g} MPa (above the plot)")
     ax.axhline(0, color="0.5", lw=0.5)
     ax.set(xlabel="time [day]", ylabel="stress [MPa] (tension > 0)", title=_title(res))
     ax.grid(True, which="both", lw=0.3)
@@ -487,15 +534,17 @@ def _force_panel(ax, res, name, legend=True):
 
 
 def plot_forces(path, res):
-    """The paper's Figures 3.6-3.8 and 3.12-3.14 for one run: one panel per contact kind, the 5 %
-    and 95 % normal-force quantiles against log time with the kind's tensile capacity; with damage
-    a row below with the broken share of the kind's bonded contacts."""
+    """The paper's Figures 3.6-3.8 and 3.12-3.14 for one run: one panel per contact kind (the
+    structures' kinds after the paper's three, kinds_of), the 5 % and 95 % normal-force quantiles
+    against log time with the kind's tensile capacity; with damage a row below with the broken
+    share of the kind's bonded contacts."""
     plt = _plt()
     rows = 2 if res["damage"] else 1
-    fig, axes = plt.subplots(rows, 3, figsize=(13, 4.2 if rows == 1 else 6), sharex=True, squeeze=False,
+    kinds = kinds_of(res)
+    fig, axes = plt.subplots(rows, len(kinds), figsize=(13 * len(kinds) / 3, 4.2 if rows == 1 else 6), sharex=True, squeeze=False,
                              gridspec_kw={"height_ratios": [3, 1.2][:rows]})
     t = np.array(res["times_days"])
-    for c, name in enumerate(KIND_NAMES):
+    for c, name in enumerate(kinds):
         ax = axes[0, c]
         if res["n_contacts_by_kind"].get(name):
             _force_panel(ax, res, name)
@@ -521,9 +570,12 @@ def plot_curves(out, res):
         plot_structure_stress(os.path.join(out, "structure_stress.png"), res)
 
 
-def plot_crack_map(out, res, assembly, broken_contacts, step=-1, name="crack_map.png"):
-    """Broken contacts drawn as their Laguerre facets, coloured by kind, over the mesostructure;
-    `step`: the index into times_days of the time the map shows (-1: the last)."""
+def plot_crack_map(out, res, assembly, broken_contacts, step=-1, name="crack_map.png", segments=None):
+    """Broken contacts drawn as their Laguerre facets, coloured by kind (COLORS), over the
+    mesostructure, with the bars and platens in their kinds' colours; `step`: the index into
+    times_days of the time the map shows (-1: the last); segments: {(id1, id2): (x1, y1, x2, y2)
+    [m]} of contacts that are not the assembly's (a broken BOND contact; load_breaks'
+    'segment_m'), drawn across their normal."""
     plt = _plt()
     from matplotlib.collections import LineCollection
     fig, ax = plt.subplots(figsize=(7, 7 * assembly.height_m / assembly.width_m))
@@ -531,28 +583,44 @@ def plot_crack_map(out, res, assembly, broken_contacts, step=-1, name="crack_map
         p = np.asarray(poly) * 1e3
         ax.fill(p[:, 0], p[:, 1], color="0.85", lw=0.5, ec="0.5")
     index = {(int(i), int(j)): c for c, (i, j) in enumerate(assembly.contacts)}
-    for k, kname in enumerate(KIND_NAMES):
-        segs = []
-        for i, j, kind in broken_contacts:
-            c = index.get((min(i, j), max(i, j)))
-            if c is not None and kind == k:
-                s = assembly.facet_segment_m[c] * 1e3
-                segs.append([(s[0], s[1]), (s[2], s[3])])
-        if segs:
-            ax.add_collection(LineCollection(segs, colors=COLORS[kname], linewidths=1.2, label=f"{kname} ({len(segs)} broken)"))
     bar = res.get("rebar")
     if bar and res.get("rebar_stress_mean_Pa"):  # the bars (swelldem.dem.rebar), with their stress at that time
-        mean, big = res["rebar_stress_mean_Pa"][step] / 1e6, res["rebar_stress_max_Pa"][step] / 1e6
+        # rounded first, so that a stress of -0.01 MPa prints as 0, not -0
+        mean, big = (round(res[f"rebar_stress_{w}_Pa"][step] / 1e6) + 0 for w in ("mean", "max"))
         for n, y in enumerate(bar["y_m"]):
-            ax.plot([0, assembly.width_m * 1e3], [y * 1e3] * 2, "-", color="tab:blue", lw=3, alpha=0.6,
+            ax.plot([0, assembly.width_m * 1e3], [y * 1e3] * 2, "-", color=COLORS["STEEL"], lw=3, alpha=0.6,
                     label=f"bar ({100 * bar['ratio']:g} %): stress mean {mean:.0f}, largest {big:.0f} MPa" if n == 0 else None)
+    cfg = res.get("config") or {}
+    for axis in ("x", "y"):  # the platens, at the specimen's sides
+        if cfg.get(f"boundary_{axis}", "free") != "free":
+            w, h = assembly.width_m * 1e3, assembly.height_m * 1e3
+            for n, edge in enumerate((0.0, w if axis == "x" else h)):
+                xy = ([edge, edge], [0, h]) if axis == "x" else ([0, w], [edge, edge])
+                ax.plot(*xy, "-", color=COLORS["PLATEN"], lw=4, solid_capstyle="butt", clip_on=False,
+                        label=f"platens on the {axis} sides ({cfg[f'boundary_{axis}']})" if n == 0 else None)
+    for kname in kinds_of(res) if res.get("per_kind") else KIND_NAMES:
+        k = {v: kk for kk, v in KIND_NAME_OF_ID.items()}[kname]
+        segs = []
+        for i, j, kind in broken_contacts:
+            pair = (min(i, j), max(i, j))
+            if kind != k:
+                continue
+            c = index.get(pair) if kind in (0, 1, 2) else None
+            s = assembly.facet_segment_m[c] if c is not None else (segments or {}).get(pair)
+            if s is not None and np.all(np.isfinite(s)):
+                s = np.asarray(s) * 1e3
+                segs.append([(s[0], s[1]), (s[2], s[3])])
+        if segs:
+            # a structure's broken contact drawn thicker: one bond facet against hundreds of mortar ones
+            ax.add_collection(LineCollection(segs, colors=COLORS[kname], linewidths=1.2 if kname in KIND_NAMES else 2.5,
+                                             label=f"{kname} ({len(segs)} broken)"))
     ax.set_xlim(0, assembly.width_m * 1e3)
     ax.set_ylim(0, assembly.height_m * 1e3)
     ax.set_aspect("equal")
     t = res["times_days"][step] if res["times_days"] else float("nan")
     ax.set(xlabel="x [mm]", ylabel="y [mm]",
            title=f"crack map: {LABEL.get(res['scenario'], res['scenario'])}, {res['behaviour']}, t = {t:.4g} d")
-    if broken_contacts or bar:
+    if ax.get_legend_handles_labels()[0]:
         ax.legend(loc="upper right", fontsize=8)
     _save(fig, os.path.join(out, name), dpi=130)
 
@@ -565,6 +633,14 @@ def load_breaks(out):
         return None
     with np.load(path) as z:
         return {k: z[k] for k in z.files}
+
+
+def break_segments(breaks):
+    """{(id1, id2): (x1, y1, x2, y2) [m]} of the contacts of load_breaks' dict (its 'segment_m'; {}
+    for a file without it): what plot_crack_map draws for a contact that is not the assembly's."""
+    if breaks is None or "segment_m" not in breaks:
+        return {}
+    return {(int(i), int(j)): s for (i, j), s in zip(breaks["pairs"], breaks["segment_m"])}
 
 
 def broken_at(breaks, step):
@@ -595,13 +671,14 @@ def plot_crack_maps(out, res, assembly, breaks, days):
     """crack_map_<day>d.png in `out` for each time in `days` [day]: the contacts broken by the last
     step at or before it (from load_breaks). Returns the file names."""
     times = np.asarray(res["times_days"], dtype=float)
+    segments = break_segments(breaks)
     names = []
     for day in days:
         step = int(np.searchsorted(times, day * (1 + 1e-9), side="right")) - 1
         if step < 0:
             continue
         names.append(f"crack_map_{day:g}d.png")
-        plot_crack_map(out, res, assembly, broken_at(breaks, step), step=step, name=names[-1])
+        plot_crack_map(out, res, assembly, broken_at(breaks, step), step=step, name=names[-1], segments=segments)
     return names
 
 
@@ -612,8 +689,8 @@ def write_all(out, res, assembly, broken_contacts):
     plot_curves(out, res)
     if getattr(assembly, "dim", 2) == 3:  # the crack maps draw a section's polygons
         return
-    plot_crack_map(out, res, assembly, broken_contacts)
     breaks = load_breaks(out)
+    plot_crack_map(out, res, assembly, broken_contacts, segments=break_segments(breaks))
     if breaks is not None and res["damage"]:
         plot_crack_maps(out, res, assembly, breaks, crack_map_days(res))
 
@@ -873,7 +950,8 @@ def compare(reference, others, names=None):
         paper_values = TABLE_FORCES.get(paper_key(res), {})
         paper_var = paper_variation(reference, res) if n else None
         for r in final_rows(res):
-            rr = ref_rows[r["kind"]]
+            # a kind the reference has not (the bars' BOND against a run without bars) varies against nothing
+            rr = ref_rows.get(r["kind"], {"fn_p05_kN": float("nan"), "fn_p95_kN": float("nan")})
             var = lambda a, b: 100.0 * (a - b) / b if not math.isnan(b) and abs(b) >= VARIATION_MIN_REFERENCE_KN else float("nan")
             pv = paper_values.get(r["kind"], {})
             pvar = paper_var.get(r["kind"], (None, None)) if paper_var else (None, None)
@@ -949,7 +1027,7 @@ def paper_tables_md(runs, folders=None):
                 # a run that did not finish shows its last step's numbers, marked with how it ended
                 mark = "" if state == "finished" else f" ({state}) †"
                 unfinished |= bool(mark)
-                for r in final_rows(res):
+                for r in final_rows(res, KIND_NAMES):
                     kind = r["kind"]
                     p = TABLE_FORCES[(sc, beh, damage)][kind]
                     if beh == "el":

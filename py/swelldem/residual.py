@@ -20,7 +20,10 @@ What a virtual test is (docs/residual-properties.md gives the reasons):
   frictionless platens (y free). Stress = mean band reaction / (H b) [Pa], strain = band
   displacement / W [-]; compression counted positive in the compression and SDT results.
 * Tests: 'tension' and 'compression' to past the peak (peak stress; modulus = least-squares slope
-  of the first loading branch over MODULUS_WINDOW of the peak stress); 'sdt', the stiffness
+  of the first loading branch over MODULUS_WINDOW of the peak stress); a compression test
+  usually ends when a step past the peak finds no equilibrium (the specimen has failed: status
+  'no_equilibrium'), its normal end; one that stops while the stress still rises has a peak that
+  is only a lower bound of the strength (peak_is_lower_bound); 'sdt', the stiffness
   damage test: SDT_CYCLES load-unload cycles in compression to a fraction of the undamaged
   specimen's compressive strength, stiffness damage index SDI = hysteresis (dissipated) energy /
   loading (total) energy summed over the cycles, plastic strain index PDI = strain left at zero
@@ -337,9 +340,11 @@ def run_test(assembly, mode, legs, age_days, n_idle=0, max_steps=400, tolerance=
     loader = _Loader(O, assembly, mode, legs, n_idle, left, right, max_steps)
     solver.stepHook = loader
     t0 = time.time()
+    from .dem import run_chunk_quietly
     try:
         while not loader.done and not solver.finished:
-            O.run(2000, True)
+            # a test past its peak ends by 'no equilibrium': expected, so without YADE's FATAL lines
+            run_chunk_quietly(solver, 2000)
     except RuntimeError as e:
         if "no equilibrium" not in str(e):
             raise
@@ -351,13 +356,22 @@ def run_test(assembly, mode, legs, age_days, n_idle=0, max_steps=400, tolerance=
             "tolerance": float(solver.tolerance)}
 
 
+def peak_is_lower_bound(stress):
+    """Whether the highest stress [Pa] of a test's converged steps is only a lower bound of its
+    strength: it is the last one, so the test stopped (no equilibrium, or its step budget spent)
+    while the stress was still rising, before its peak showed."""
+    s = np.asarray(stress, float)
+    return bool(len(s) == 0 or int(np.argmax(s)) == len(s) - 1)
+
+
 def strength_result(res):
-    """Peak [Pa], strain at peak and modulus [Pa] (MODULUS_WINDOW) of a 'peak' test."""
+    """Peak [Pa], strain at peak, modulus [Pa] (MODULUS_WINDOW) of a 'peak' test, and
+    'peak_lower_bound' (peak_is_lower_bound: the peak is a lower bound of the strength)."""
     s = np.asarray(res["stress_Pa"])
     e = np.asarray(res["strain"])
     k = int(np.argmax(s))
     peak = float(s[k])
-    return {"peak_Pa": peak, "strain_at_peak": float(e[k]), "modulus_Pa": modulus_fit(e, s, peak),
+    return {"peak_Pa": peak, "peak_lower_bound": peak_is_lower_bound(s), "strain_at_peak": float(e[k]), "modulus_Pa": modulus_fit(e, s, peak),
             "broken_at_peak": int(res["broken"][k]), "broken_start": int(res["broken"][0]), "broken_end": int(res["broken"][-1])}
 
 
@@ -391,3 +405,63 @@ def fresh_specimen(assembly, kinds_by_name):
     tk = kinds_for_test({paper.KIND_IDS[n]: k for n, k in kinds_by_name.items()})
     dummy = dem.make_solver("adr", verbose=False)
     dem.to_yade(assembly, {n: tk[paper.KIND_IDS[n]] for n in kinds_by_name}, dummy)
+
+
+#: The residual ratios plot_against_expansion draws: key of a residual.csv row -> (label, marker).
+RATIOS = {"E_rel": ("$E/E_0$ (compression modulus)", "o"), "fc_rel": ("$f_c/f_{c0}$", "s"), "ft_rel": ("$f_t/f_{t0}$", "D")}
+
+
+def plot_against_expansion(path, rows, title):
+    """residual_vs_expansion.png: the ages of one run (rows: residual.csv's rows as dicts) against
+    their linear expansion [%] (expansion_linear_pct): left E/E0, f_c/f_c0 and f_t/f_t0 [-], a
+    strength ratio whose strength is a lower bound (its <key>_lower_bound flag, the swollen
+    specimen's or the reference's) drawn open and named so; right the SDI [-] of the swollen
+    specimen, and the undamaged reference's (the method's floor), where the SDT did all its cycles.
+    Each point labelled with its age [day]."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    x = np.array([r["expansion_linear_pct"] for r in rows], float)
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.3))
+    for k, (key, (label, marker)) in enumerate(RATIOS.items()):
+        if not any(key in r for r in rows):
+            continue
+        y = np.array([r.get(key, np.nan) for r in rows], float)
+        q = key.split("_")[0]
+        low = np.array([bool(r.get(f"{q}_lower_bound") or r.get(f"{q}0_lower_bound")) for r in rows])
+        c = f"C{k}"
+        ax.plot(x, y, "-", color=c, lw=1, alpha=0.6)
+        if (~low).any():
+            ax.plot(x[~low], y[~low], marker, color=c, ls="none", label=label)
+        if low.any():
+            ax.plot(x[low], y[low], marker, mfc="white", color=c, ls="none",
+                    label=f"{label}: its swollen or undamaged strength is a lower bound\n(the test stopped before its peak)")
+    for xi, r in zip(x, rows):
+        ax.annotate(f"{r['age_days']:g} d", (xi, 1.0), textcoords="offset points", xytext=(0, 4), ha="center", fontsize=7, color="0.35")
+    ax.axhline(1.0, color="0.6", lw=0.8)
+    ax.set(xlabel="linear expansion at the test age, mean of the x and y strains [%]", ylabel="swollen / undamaged at the same age [-]",
+           title="residual stiffness and strength")
+    ax.set_ylim(0, max(1.15, np.nanmax([r.get(k, np.nan) for r in rows for k in RATIOS] + [1.0]) + 0.05))
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, loc="lower left")
+    done = np.array([r.get("sdt_status") == "done" for r in rows])
+    if any("SDI" in r for r in rows):
+        sdi = np.array([r.get("SDI", np.nan) for r in rows], float)
+        sdi0 = np.array([r.get("SDI0", np.nan) for r in rows], float)
+        bx.plot(x[done], sdi[done], "o-", color="C3", label="SDI, swollen specimen")
+        bx.plot(x[done], sdi0[done], "o--", mfc="white", color="0.4", label="SDI, undamaged reference (the method's floor)")
+        if (~done).any():
+            missing = ", ".join(f"{r['age_days']:g} d" for r, d in zip(rows, done) if not d)
+            bx.plot([], [], " ", label=f"SDT not done at {missing}")
+        for xi, yi, r in zip(x[done], sdi[done], [r for r, d in zip(rows, done) if d]):
+            bx.annotate(f"{r['age_days']:g} d", (xi, yi), textcoords="offset points", xytext=(4, 4), fontsize=7, color="0.35")
+        bx.legend(fontsize=7, loc="best")
+    bx.set_xlim(ax.get_xlim())  # the same expansions as the left panel, even with one SDT done
+    bx.set(xlabel="linear expansion at the test age, mean of the x and y strains [%]",
+           ylabel="stiffness damage index SDI [-]", title="stiffness damage test")
+    bx.set_ylim(0, 1.3 * np.nanmax([r.get(k, np.nan) for r in rows for k in ("SDI", "SDI0")] + [1e-3]))
+    bx.grid(alpha=0.3)
+    fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

@@ -92,7 +92,9 @@ class SwellingTest:
     aggregate_area_fraction: float = _field(-1.0, "aggregate area fraction of the specimen (< 0: the generator's default)", unit="-")
     kind_params: dict = _field(None, "per-kind ContactKind attributes, KIND.attribute=value (repeatable), e.g. "
                                      "MORTAR.tensileStrength=5e6 [Pa]; contact values, applied last (after eps_inf, "
-                                     "strength_scale and, in macro, the beta scaling of q's and young)",
+                                     "strength_scale and, in macro, the beta scaling of q's and young); KIND one of MORTAR, "
+                                     "ITZ, AGG, and with bars BOND (a copy of the ITZ kind as run, not swelling, these "
+                                     "values over it)",
                                flag="--kind-param", sets="ContactKind.<attribute>", factory=dict)
     boundary_x: str = _field("free", "platens on the x sides: free, fixed (restrained), stress:S (applied stress S [Pa], compression "
                                      "negative) or spring:K (partial restraint, K [N/m per metre of thickness]); "
@@ -174,8 +176,9 @@ class SwellingTest:
         if not isinstance(self.kind_params, dict):
             _bad("kind_params", self.kind_params, "a dict {kind name: {ContactKind attribute: value}}")
         for name, attrs in self.kind_params.items():
-            if name not in paper.KIND_NAMES:
-                _bad("kind_params kind", name, ", ".join(paper.KIND_NAMES))
+            # BOND exists only with bars; it starts as a copy of the ITZ (swelldem.dem.rebar)
+            if name not in paper.KIND_NAMES and not (name == "BOND" and self.rebar_ratio > 0):
+                _bad("kind_params kind", name, ", ".join(paper.KIND_NAMES) + ", and BOND when rebar_ratio > 0")
             if not isinstance(attrs, dict):
                 _bad(f"kind_params['{name}']", attrs, "a dict {ContactKind attribute: value}")
             for attr, value in attrs.items():
@@ -616,6 +619,9 @@ def prepare(test, extra_times=()):
     test.validate()
     try:
         kinds = make_kinds(test)
+        if test.kind_params.get("BOND"):  # the bars' BOND kind, made at the build, checked by its constructor here
+            from .dem import rebar
+            rebar.bond_kind(kinds["ITZ"], test.kind_params["BOND"])
     except TypeError as e:  # e.g. MORTAR.tensileStrength=abc: boost.python cannot make a double of it
         text = {f"{n}.{a}": v for n, attrs in test.kind_params.items() for a, v in attrs.items() if isinstance(v, str)}
         if len(text) == 1:
@@ -727,7 +733,7 @@ def build(test, prepared=None, extra_times=(), assembly=None, reset=True, t0=Non
     bars = None
     if lay is not None:
         from .dem import rebar
-        bars = rebar.add_bars(assembly, ys, lay, kinds["ITZ"])
+        bars = rebar.add_bars(assembly, ys, lay, kinds["ITZ"], test.kind_params.get("BOND"))
     from .dem.platens import Boundary, add_platens
     platens = add_platens(assembly, ys, Boundary.parse("boundary_x", test.boundary_x), Boundary.parse("boundary_y", test.boundary_y))
     return Built(test=test, kinds=kinds, solver=solver, assembly=assembly, scene=ys, d_inf=d_inf, r_mean=r_mean, calibration=cal,

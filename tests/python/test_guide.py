@@ -115,6 +115,29 @@ def test_the_tutorial_runs_and_writes_its_table_and_plots(work):
         with open(out / png, "rb") as f:
             assert f.read(8) == b"\x89PNG\r\n\x1a\n"
     assert "tutorial: 18 steps" in p.stdout
+    # swelldem.dem.standard_outputs: the swelling test's outputs of the same run, against the
+    # tutorial's own recording (its own loop over the contacts, 6 digits) and the ParaView files
+    res = json.loads((out / "results.json").read_text())
+    assert res["status"] == "finished" and res["scenario"] == "tutorial, mortar swelling"
+    assert res["times_days"] == pytest.approx(times, rel=1e-5)
+    assert [(x + y) / 2 for x, y in zip(res["swelling_strain_x"], res["swelling_strain_y"])] == pytest.approx(eps, rel=1e-5, abs=1e-11)
+    for name in ("MORTAR", "ITZ", "AGG"):  # the tutorial counts every broken contact, born broken ones too
+        d = res["per_kind"][name]
+        assert [b + n for b, n in zip(d["broken"], d["born_broken"])] == [r[col[f"broken {name} [-]"]] for r in rows]
+    last = ET.parse(out / "vtk" / "contacts.pvd").getroot().findall("Collection/DataSet")[-1]
+    assert float(last.get("timestep")) == pytest.approx(3650.0)
+    cells = read_vtp(out / "vtk" / last.get("file"))[1]
+    assert int(((cells["kindId"] == 1) & (cells["broken"] == 1) & (cells["bonded"] == 1)).sum()) == res["per_kind"]["ITZ"]["broken"][-1]
+    with open(out / "curves.csv") as f:
+        assert len(list(csv.reader(f))) == len(times) + 1
+    table = (out / "table.md").read_text()
+    assert table.startswith("# tutorial, mortar swelling, viscoelastic, damage on")
+    itz = res["per_kind"]["ITZ"]["broken"][-1]
+    assert f"| ITZ | {res['n_contacts_by_kind']['ITZ']} |" in table and f"| {itz} (" in table
+    assert undocumented(out, documented_names(2, 3, 4)) == []  # what the own scene wrote, named in the guide
+    for png in ("swelling_strain.png", "unbalanced.png", "force_quantiles.png", "crack_map.png", "crack_map_100d.png", "crack_map_200d.png"):
+        with open(out / png, "rb") as f:
+            assert f.read(8) == b"\x89PNG\r\n\x1a\n", png
 
 
 def read_vtp(path):
@@ -123,17 +146,38 @@ def read_vtp(path):
     return poly, cells, points, {k: v[0] for k, v in fields.items()}
 
 
+def documented_names(*sections):
+    """Regular expressions of the file names the guide's given sections (their '## N. ' numbers)
+    name in backticks: `crack_map_<day>d.png` -> crack_map_.+d\.png; a folder `vtk/` as vtk."""
+    text = guide_text()
+    names = set()
+    for n in sections:
+        part = text.split(f"\n## {n}. ")[1].split("\n## ")[0]
+        names |= {t.rstrip("/") for t in re.findall(r"`([A-Za-z_<>0-9]+(?:\.[a-z.]+|/))`", part)}
+    return [re.compile("^" + ".+".join(re.escape(p) for p in re.split(r"<[^>]+>", name)) + "$") for name in names]
+
+
+def undocumented(folder, patterns):
+    """The files and folders under `folder` (one level into its folders) whose names match none of `patterns`."""
+    found = [p.name for p in folder.iterdir()] + [p.name for d in folder.iterdir() if d.is_dir() for p in d.iterdir()]
+    return [name for name in found if not any(r.match(name) for r in patterns)]
+
+
 def test_a_first_run_and_its_paraview_files(work):
     pytest.importorskip("vtk", reason="the ParaView files are read with VTK's reader: apt-get install python3-vtk9")
     from vtk.util.numpy_support import vtk_to_numpy
     command = guide_command("out/first")
     assert "--vtk-every 1" in command
-    run_ok(command, work)
+    p = run_ok(command, work)
     out = work / "out" / "first"
     res = json.loads((out / "results.json").read_text())
     assert res["status"] == "finished"
     times = res["times_days"]
     assert times == pytest.approx(log_times(1.0, 3650.0, 2), rel=1e-12)
+    # every file the run wrote is named in the guide's sections 2 and 3, and the console lists them
+    assert undocumented(out, documented_names(2, 3)) == []
+    listed = [line for line in p.stdout.splitlines() if line.startswith("results, tables and plots in ")]
+    assert len(listed) == 1 and all(f.name in listed[0] for f in out.iterdir()), listed
     collections = {}
     for name in ("particles", "contacts"):
         root = ET.parse(out / "vtk" / f"{name}.pvd").getroot()

@@ -149,7 +149,12 @@ def test_bar_stress_is_the_bar_force_over_its_section(yade_run, tmp_path):
                                        (["--size-mm", "12", "12", "--rebar-ratio", "0.01", "--rebar-bars", "20"],
                                         "rebar_bars = 20 is out of range; allowed: 1 <= rebar_bars <= 4: "),
                                        (["--size-mm", "12", "12", "--rebar-ratio", "0.01", "--rebar-bars", "5"],
-                                        "rebar_bars = 5 is out of range; allowed: 1 <= rebar_bars <= 4: ")])
+                                        "rebar_bars = 5 is out of range; allowed: 1 <= rebar_bars <= 4: "),
+                                       # the BOND kind exists only with bars; its name and id are not the user's
+                                       (["--kind-param", "BOND.tensileStrength=1e6"],
+                                        "kind_params kind = 'BOND' is out of range; allowed: MORTAR, ITZ, AGG, and BOND when rebar_ratio > 0"),
+                                       (["--rebar-ratio", "0.01", "--kind-param", "BOND.kindId=1"], "BOND.kindId = 1 is out of range"),
+                                       (["--rebar-ratio", "0.01", "--kind-param", "BOND.tensileStrength=-1"], "tensileStrength")])
 def test_swelling_test_refuses_bad_rebar_before_any_work(tmp_path, args, text):
     """Refused with one line on stderr (parameter, value, allowed range) and exit status 2 before the
     mesostructure is made: no output folder is left."""
@@ -159,3 +164,62 @@ def test_swelling_test_refuses_bad_rebar_before_any_work(tmp_path, args, text):
     assert proc.returncode == 2 and text in proc.stderr and not out.exists(), (proc.returncode, proc.stderr[-2000:])
     assert "Traceback" not in proc.stderr and len(script_stderr(proc.stderr)) == 1, proc.stderr
     assert "mesostructure" not in proc.stdout
+
+
+def _vtk_steps(out):
+    """The contacts' VTK files of a run, step after step: [(cell arrays)], read with VTK's reader."""
+    import xml.etree.ElementTree as ET
+    from conftest import read_vtp
+    files = [d.get("file") for d in ET.parse(out / "vtk" / "contacts.pvd").getroot().findall("Collection/DataSet")]
+    return [read_vtp(out / "vtk" / f)[1] for f in files]
+
+
+def test_structure_kinds_in_results_tables_curves_and_crack_map(tmp_path):
+    """A bar with a weak bond (BOND.tensileStrength 0.5 MPa against the ITZ's 2 MPa: it debonds)
+    between x platens: PLATEN, STEEL and BOND have their own per-kind series, rows and
+    curve columns, and the broken BOND contacts their own colour on the crack map. The counts and
+    quantiles are checked against every contact's state in the ParaView files (VTK's reader)."""
+    out = tmp_path / "rb"
+    proc = subprocess.run([LAUNCHER, "-j", "1", "-n", "-x", SCRIPT, "--scenario", "isr", "--behaviour", "elastic",
+                           "--size-mm", "16", "16", "--seed", "2", "--steps-per-decade", "2", "--rebar-ratio", "0.02",
+                           "--kind-param", "BOND.tensileStrength=0.5e6", "--boundary-x", "fixed", "--vtk-every", "1", "--out", str(out)],
+                          capture_output=True, text=True, timeout=900, env=dict(os.environ, SWELLDEM_BUILD_DIR=build_dir()))
+    assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
+    res = json.loads((out / "results.json").read_text())
+    steps = _vtk_steps(out)
+    assert len(steps) == len(res["times_days"])
+    assert list(res["per_kind"]) == ["MORTAR", "ITZ", "AGG", "PLATEN", "STEEL", "BOND"]
+    # the platens' contacts are a wall's, which the ParaView files (disc to disc lines) do not hold
+    assert res["n_contacts_by_kind"]["PLATEN"] > 0
+    assert all(len(v) == len(res["times_days"]) for v in res["per_kind"]["PLATEN"].values())
+    ids = {"STEEL": 4, "BOND": 5}  # the kindId of each, as the VTK files' field data names them
+    for name, k in ids.items():
+        first = steps[0]
+        assert res["n_contacts_by_kind"][name] == int(((first["kindId"] == k) & (first["bonded"] == 1)).sum()) > 0
+        for s, cells in enumerate(steps):
+            sel = cells["kindId"] == k
+            broken = int(((cells["broken"] == 1) & (cells["bonded"] == 1) & sel).sum())
+            assert res["per_kind"][name]["broken"][s] == broken, (name, s)
+            assert res["per_kind"][name]["born_broken"][s] == int(((cells["bonded"] == 0) & sel).sum())
+            q05, q95 = np.quantile(cells["Fn"][sel], [0.05, 0.95]) / 1e3
+            assert res["per_kind"][name]["fn_p05_kN"][s] == pytest.approx(q05, rel=1e-9, abs=1e-12)
+            assert res["per_kind"][name]["fn_p95_kN"][s] == pytest.approx(q95, rel=1e-9, abs=1e-12)
+    last = steps[-1]
+    bond_broken = int(((last["kindId"] == 5) & (last["broken"] == 1) & (last["bonded"] == 1)).sum())
+    assert bond_broken > 0  # the weak bond breaks
+    # table.md and table.csv: a row per structure kind, the BOND row with the broken count of the VTK
+    rows = {line.split("|")[1].strip(): line for line in (out / "table.md").read_text().splitlines() if line.startswith("| ")}
+    n_bond = res["n_contacts_by_kind"]["BOND"]
+    assert f"| {bond_broken} ({100 * bond_broken / n_bond:.1f}) |" in rows["BOND"]
+    assert {"PLATEN", "STEEL"} <= set(rows)
+    with open(out / "table.csv") as f:
+        table = {r["kind"]: r for r in csv.DictReader(f)}
+    assert int(table["BOND"]["broken"]) == bond_broken and int(table["BOND"]["n_contacts"]) == n_bond
+    with open(out / "curves.csv") as f:
+        head, *curve = list(csv.reader(f))
+    assert [int(r[head.index("BOND broken [-]")]) for r in curve] == res["per_kind"]["BOND"]["broken"]
+    # the crack map draws the broken bond facets in their own colour (darkorange), not the mortar's blue
+    import matplotlib.image
+    img = matplotlib.image.imread(str(out / "crack_map.png"))[..., :3]
+    orange = np.all(np.abs(img - np.array([1.0, 140 / 255, 0.0])) < 0.03, axis=-1)
+    assert orange.sum() > 200 * bond_broken / 10, orange.sum()

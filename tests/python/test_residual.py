@@ -202,3 +202,81 @@ def test_calibration_against_newton_loading(yade_run):
     moved before the ADR's set-up the calibration was 24 % below."""
     r = yade_run(NEWTON, timeout=600)
     assert r["beta"] == pytest.approx(r["newton"], rel=0.02), r
+
+
+def test_peak_is_lower_bound():
+    """A strength is only a lower bound when the highest converged stress is the last one (the
+    test stopped while the stress still rose)."""
+    assert residual.peak_is_lower_bound([0.0, 1.0, 2.0, 3.0])
+    assert not residual.peak_is_lower_bound([0.0, 2.0, 3.0, 2.9])
+    assert residual.peak_is_lower_bound([])
+    assert residual.strength_result({"stress_Pa": [0.0, 1e6, 2e6], "strain": [0.0, 1e-4, 2e-4], "broken": [0, 0, 0]})["peak_lower_bound"]
+
+
+@pytest.fixture(scope="module")
+def small_residual_run(tmp_path_factory):
+    """One residual_properties.py run with two ages (14 mm ISR elastic, 2 steps a decade, about 45 s):
+    (output folder, console text)."""
+    out = tmp_path_factory.mktemp("residual") / "res"
+    cmd = [LAUNCHER, "-j", "1", "-n", "-x", os.path.join(REPO, "scripts", "residual_properties.py"), "--scenario", "isr",
+           "--behaviour", "elastic", "--size-mm", "14", "14", "--seed", "2", "--steps-per-decade", "2", "--test-ages", "100", "3650",
+           "--out", str(out)]
+    p = subprocess.run(cmd, capture_output=True, text=True, timeout=900, env=dict(os.environ, SWELLDEM_BUILD_DIR=build_dir()))
+    assert p.returncode == 0, p.stdout[-3000:] + p.stderr[-3000:]
+    return out, p.stdout + p.stderr
+
+
+def test_residual_run_ends_without_fatal_lines_and_names_its_specimens(small_residual_run):
+    """Compression tests past (or short of) their peak end by 'no equilibrium' of the ADR, their
+    normal end: it is reported in the progress line, not by YADE's 'FATAL ERROR ... ThreadRunner'
+    and 'pyOmega::wait()' lines; every progress line says whether it tests the undamaged
+    reference or the swollen specimen."""
+    out, console = small_residual_run
+    assert "no_equilibrium" in console  # the ending these lines were about happened
+    assert "FATAL" not in console and "ThreadRunner" not in console and "Simulation error" not in console, console[-3000:]
+    lines = [line for line in console.splitlines() if line.startswith("swelldem residual: age ")]
+    assert len(lines) == 2 * 3 * 2  # ages x tests x (reference, swollen)
+    ref = [line for line in lines if ", reference (undamaged specimen, not swollen), " in line]
+    swollen = [line for line in lines if ", swollen specimen (linear expansion " in line]
+    assert len(ref) == len(swollen) == 6
+
+
+def test_residual_csv_linear_expansion_and_lower_bounds(small_residual_run):
+    """residual.csv: the linear expansion is the mean of the swelling run's x and y strains at the
+    test age (read from its own results.json), the area strain beside it in %; a strength whose
+    test curve (residual.json) is still rising at its last point is flagged as a lower bound."""
+    import csv
+    import json
+    out, _ = small_residual_run
+    swell = json.loads((out / "swelling" / "results.json").read_text())
+    res = json.loads((out / "residual.json").read_text())
+    with open(out / "residual.csv") as f:
+        rows = list(csv.DictReader(f))
+    assert [float(r["age_days"]) for r in rows] == [100.0, 3650.0]
+    flags = []
+    for r, curves in zip(rows, res["curves"]):
+        k = swell["times_days"].index(float(r["age_days"]))
+        ex, ey = swell["swelling_strain_x"][k], swell["swelling_strain_y"][k]
+        assert float(r["expansion_linear"]) == pytest.approx((ex + ey) / 2, rel=1e-12)
+        assert float(r["expansion_linear_pct"]) == pytest.approx(50 * (ex + ey), rel=1e-12)
+        assert float(r["expansion_area_pct"]) == pytest.approx(100 * ((1 + ex) * (1 + ey) - 1), rel=1e-12)
+        assert float(r["expansion"]) == pytest.approx((1 + ex) * (1 + ey) - 1, rel=1e-12)  # the area strain, as before
+        for key, name in (("fc", "compression"), ("ft", "tension")):
+            for which, flag in (("swollen", f"{key}_lower_bound"), ("reference", f"{key}0_lower_bound")):
+                stress = curves[which][name]["stress_Pa"]
+                rising_at_end = max(stress) == stress[-1]
+                assert r[flag] == str(rising_at_end), (r["age_days"], flag)
+                flags.append(rising_at_end)
+                if rising_at_end:
+                    assert curves[which][name]["status"] != "done"  # a test that reached its drop saw its peak
+    assert any(flags) and not all(flags)  # this run has both kinds: the flag is not constant
+    assert (out / "residual_vs_expansion.png").stat().st_size > 20000
+
+
+def test_residual_run_files_are_named_in_the_guide(small_residual_run):
+    """Every file of a residual run and of its swelling run is named in docs/guide.md (sections 2,
+    3 and 9)."""
+    from test_guide import documented_names, undocumented
+    out, _ = small_residual_run
+    patterns = documented_names(2, 3, 9)
+    assert undocumented(out, patterns) == [] and undocumented(out / "swelling", patterns) == []

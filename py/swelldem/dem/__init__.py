@@ -6,7 +6,8 @@
 * :mod:`.meso_scene`: a :class:`swelldem.meso.Assembly` as a scene (:func:`to_yade`), per-contact
   swelling and the gel pockets of ASR with reactive coarse aggregate;
 * :mod:`.recorder`: what a swelling test records after every converged physical step (the
-  solver's ``stepHook``), VTK export;
+  solver's ``stepHook``), VTK export, and :func:`standard_outputs`, the same outputs for a scene
+  of one's own;
 * :mod:`.uniaxial`: displacement-controlled uniaxial tension or compression between two bands of
   discs (virtual tests of a specimen's stiffness and strength).
 
@@ -16,11 +17,12 @@ The modules import YADE only when a function needs it, and then through
 """
 from ..plugin import YadeUnavailableError
 from .meso_scene import MAX_GAP_RATIO, YadeScene, set_contact_swelling, set_gel_pockets, to_yade
+from .recorder import standard_outputs
 from .scene import (BEHAVIOURS, SOLVERS, build_scene, check_solver_settings, concrete_ip2, contact_kind, disc, engines,
                     functor_kinds, kind_setting_names, kind_settings, make_solver, reset_keeping_tags,
-                    run_to_end, scene_law, solver_defaults, solver_setting_names, solver_settings)
+                    run_chunk_quietly, run_to_end, scene_law, solver_defaults, solver_setting_names, solver_settings)
 
 __all__ = ["BEHAVIOURS", "MAX_GAP_RATIO", "SOLVERS", "YadeScene", "YadeUnavailableError", "build_scene", "concrete_ip2", "contact_kind",
            "disc", "check_solver_settings", "engines", "functor_kinds", "kind_setting_names", "kind_settings",
-           "make_solver", "reset_keeping_tags", "run_to_end", "scene_law", "set_contact_swelling", "set_gel_pockets", "solver_defaults",
-           "solver_setting_names", "solver_settings", "to_yade"]
+           "make_solver", "reset_keeping_tags", "run_chunk_quietly", "run_to_end", "scene_law", "set_contact_swelling", "set_gel_pockets", "solver_defaults",
+           "solver_setting_names", "solver_settings", "standard_outputs", "to_yade"]

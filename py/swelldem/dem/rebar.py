@@ -148,10 +148,24 @@ class Bars:
         return float(s.max()), float(s.mean())
 
 
-def add_bars(assembly, yscene, lay, itz_kind):
+def bond_kind(itz_kind, params=None):
+    """The BOND ContactKind: a full copy of the ITZ kind `itz_kind` (its temperature too, for creep
+    at temperature: docs/temperature.md), not swelling, with the ContactKind attributes of
+    `params` ({attribute: value}, e.g. {'tensileStrength': 0.5e6} [Pa]) over it; the constructor
+    checks every value."""
+    params = dict(params or {})
+    for fixed in ("name", "kindId"):  # what makes it the BOND kind
+        if fixed in params:
+            options.bad(f"BOND.{fixed}", params[fixed], f"left out (the BOND kind's {fixed} is {BOND if fixed == 'name' else paper.STRUCTURE_KIND_IDS[BOND]})")
+    _, W = sc.require("swelldem.dem.rebar")
+    return W.ContactKind(**{**itz_kind.dict(), "name": BOND, "kindId": paper.STRUCTURE_KIND_IDS[BOND], "swelling": False,
+                            "swellDispInf": 0.0, **params})
+
+
+def add_bars(assembly, yscene, lay, itz_kind, bond_params=None):
     """Adds the bars of `lay` to the scene that swelldem.dem.to_yade made from the carved assembly
     (before the run); itz_kind: the scenario's ITZ kind, whose parameters the BOND kind takes
-    (swelling off). Returns a Bars."""
+    (swelling off), with the attributes of bond_params over them (bond_kind). Returns a Bars."""
     yade, W = sc.require("swelldem.dem.rebar")
     O = yade.Omega()
     from .scene import contact_kind
@@ -160,8 +174,7 @@ def add_bars(assembly, yscene, lay, itz_kind):
     area = lay.thickness_m * b
     # kn = E_s A / L, with A set to the bar's section A_s below
     ip2.steel = contact_kind(STEEL, behaviour="elastic", young=lay.young, shear_ratio=0.3, damage=False)
-    # a full copy of the ITZ (its temperature too, for creep at temperature: docs/temperature.md), not swelling
-    ip2.bond = W.ContactKind(**dict(itz_kind.dict(), name=BOND, kindId=paper.STRUCTURE_KIND_IDS[BOND], swelling=False, swellDispInf=0.0))
+    ip2.bond = bond_kind(itz_kind, bond_params)
     mat = W.ConcreteMat(steel=True, young=lay.young, label="steel")
     O.materials.append(mat)
     rr, n = lay.radius_m, lay.n_discs

@@ -8,7 +8,7 @@ import time
 import numpy as np
 
 from ..measure import affine_strain
-from ..paper import KIND_NAMES
+from ..paper import KIND_NAME_OF_ID, KIND_NAMES, STRUCTURE_KIND_IDS
 from ..plugin import require
 from ..report import write_curves, write_results
 from .vtk_series import VtkSeries
@@ -61,14 +61,16 @@ BREAKS_FILE = "contact_breaks.npz"
 
 def tensile_capacity():
     """Per kind name, the tensile capacity f_t A of the real, unbroken interactions of O [kN]:
-    {'min', 'median', 'max'} over the kind's contacts, and 'f_t_Pa', the kind's tensileStrength
-    (whether or not damage is on: with damage off it is the capacity the contacts do not have)."""
+    {'min', 'median', 'max'} over the kind's contacts, and 'f_t_Pa', the kind's tensileStrength;
+    for the paper's kinds whether or not damage is on (with damage off it is the capacity the
+    contacts do not have), for a structure's kind (BOND) only when it can break: steel and platen
+    contacts never do, and a capacity drawn for them would be one they do not have."""
     yade, _ = _yade()
     cap, f_t = {}, {}
     for i in yade.Omega().interactions:
         if i.isReal and not i.phys.broken:
-            k = KIND_NAMES[i.phys.kindId] if 0 <= i.phys.kindId < len(KIND_NAMES) else None
-            if k is not None:
+            k = KIND_NAME_OF_ID.get(i.phys.kindId)
+            if k in KIND_NAMES or (k is not None and i.phys.kind.damage):
                 cap.setdefault(k, []).append(i.phys.kind.tensileStrength * i.phys.area / 1e3)
                 f_t[k] = float(i.phys.kind.tensileStrength)
     return {k: {"min": float(np.min(v)), "median": float(np.median(v)), "max": float(np.max(v)), "f_t_Pa": f_t[k]}
@@ -88,11 +90,57 @@ def skeleton_weights(assembly):
     return np.where(assembly.coordination() >= dim, assembly.r ** dim, 0.0)
 
 
+def add_structure_kinds(res, pair_kind):
+    """Gives the structure kinds (PLATEN, STEEL, BOND) that have bonded contacts at the start
+    (pair_kind: the kindId of each) their per-kind series in res['per_kind'] and their count in
+    res['n_contacts_by_kind'], after the paper's three, unless res holds them already (a resumed
+    run). Returns {kind name: kindId} of the kinds the recorder follows: the paper's three, then
+    those structure kinds (none in a scene without structures, whose results are unchanged)."""
+    ids = {name: k for k, name in enumerate(KIND_NAMES)}
+    per_kind, counts = res.get("per_kind"), res.get("n_contacts_by_kind")
+    for name, k in STRUCTURE_KIND_IDS.items():
+        n = int(np.sum(pair_kind == k))
+        if n == 0:
+            continue
+        ids[name] = k
+        if per_kind is not None:
+            per_kind.setdefault(name, {"fn_p05_kN": [], "fn_p95_kN": [], "broken": [], "born_broken": []})
+        if counts is not None:
+            counts.setdefault(name, n)
+    return ids
+
+
+def facet_segments(assembly, pairs, pair_kind):
+    """(m, 2, 2) -> (m, 4): each bonded contact's facet as a segment x1, y1, x2, y2 [m], what a
+    crack map draws. A contact of the assembly has its Laguerre facet (assembly.facet_segment_m);
+    a structure's contact (a bar's, a platen's) is not in the assembly, and its facet is the
+    segment across its normal through its contact point, of its facet length (area / thickness),
+    read from O at the start. NaN for a 3D box (the crack maps draw a section)."""
+    seg = np.full((len(pairs), 4), np.nan)
+    if getattr(assembly, "dim", 2) == 3 or not len(pairs):
+        return seg
+    index = {(int(i), int(j)): c for c, (i, j) in enumerate(assembly.contacts)}
+    yade, _ = _yade()
+    O = yade.Omega()
+    thickness = float(assembly.thickness_m)
+    for c, (i, j) in enumerate(pairs.tolist()):
+        a = index.get((i, j)) if pair_kind[c] in (0, 1, 2) else None
+        if a is not None:
+            seg[c] = assembly.facet_segment_m[a]
+            continue
+        I = O.interactions[i, j]
+        p, n = I.geom.contactPoint, I.geom.normal
+        half = 0.5 * I.phys.area / thickness
+        seg[c] = (p[0] + half * n[1], p[1] - half * n[0], p[0] - half * n[1], p[1] + half * n[0])
+    return seg
+
+
 class StepRecorder:
     """Per converged physical step, appends to the results dict `res`: time [day], the swelling
     strains (affine fit of the skeleton's displacements: x, y and area), the platens' stress [Pa] and
     displacement [m] per axis (0 without platens), the largest and the mean bar stress [Pa] (with bars), the unbalanced-force ratio, the step's
-    iterations and round-off flag, and per contact kind the 5 % / 95 % normal-force quantiles
+    iterations and round-off flag, and per contact kind (the paper's three, and the structures'
+    that the scene has: add_structure_kinds) the 5 % / 95 % normal-force quantiles
     [kN], the broken contacts (bonded at the start, broken since) and the contacts made during
     the run (born broken, 'born_broken', present at the step), under 'per_kind'; sets the
     solver's iterations so far ('iterations', split into 'newton_iterations' and
@@ -124,6 +172,8 @@ class StepRecorder:
             if c is not None:
                 self.pair_kind[c] = i.phys.kindId
         self.break_step = np.full(len(self.pairs), -1, dtype=np.int32)
+        self.segments = facet_segments(assembly, self.pairs, self.pair_kind)
+        self.kind_ids = add_structure_kinds(res, self.pair_kind)
         res["tensile_capacity_kN"] = tensile_capacity()
 
     def _vtk_series(self, keep_before=0):
@@ -187,7 +237,7 @@ class StepRecorder:
         r["step_at_round_off"].append(bool(round_off[-1]) if round_off else False)
         limit = getattr(solver, "stepRoundOffRatio", None)
         r.setdefault("round_off_ratio", []).append(float(limit[-1]) if limit else float("nan"))
-        for k, name in enumerate(KIND_NAMES):
+        for name, k in self.kind_ids.items():
             sel = kind == k
             q05, q95 = (np.quantile(fn[sel], [0.05, 0.95]) / 1e3).tolist() if sel.any() else (float("nan"),) * 2
             r["per_kind"][name]["fn_p05_kN"].append(q05)
@@ -238,11 +288,13 @@ class StepRecorder:
     def write_breaks(self):
         """BREAKS_FILE in out: 'pairs' (m, 2) body ids id1 < id2 of the contacts bonded at the
         start, 'kind' their kindId, 'break_step' the index into times_days of the step at which
-        each broke (-1: intact), 'times_days' [day]; written to a temporary file, then renamed."""
+        each broke (-1: intact), 'times_days' [day], 'segment_m' (m, 4) each contact's facet as a
+        segment x1, y1, x2, y2 at the start [m] (facet_segments; NaN for a 3D box); written to a
+        temporary file, then renamed."""
         tmp = os.path.join(self.out, BREAKS_FILE + ".tmp")
         with open(tmp, "wb") as f:
             np.savez_compressed(f, pairs=self.pairs, kind=self.pair_kind, break_step=self.break_step,
-                                times_days=np.array(self.res["times_days"], dtype=float))
+                                times_days=np.array(self.res["times_days"], dtype=float), segment_m=self.segments)
         os.replace(tmp, os.path.join(self.out, BREAKS_FILE))
 
     def export_vtk(self):
@@ -298,3 +350,55 @@ def export_vtk(out, step, time_days, bonded=None, assembly=None):
     series = VtkSeries(os.path.join(out, "vtk"), bonded, **cells)
     series.export(step, time_days)
     return series
+
+
+def standard_outputs(out, assembly, yscene, solver, name="own scene", vtk_every=0):
+    """Gives a scene of one's own (built with swelldem.dem.to_yade, before its run) the outputs of
+    scripts/swelling_test.py in the folder `out` (made if missing): after every converged step
+    results.json, curves.csv, plot_data.txt and contact_breaks.npz (StepRecorder), the ParaView
+    files every vtk_every steps (0: the last step only) into out/vtk/; after the last step also
+    table.md / table.csv, swelling_strain.png (with the free swelling of the scene's swelling
+    kind: swellDispInf / (2 R_mean) times Larive's xi at its tauC, tauL), unbalanced.png,
+    force_quantiles.png, crack_map.png and, with damage, crack_map_<day>d.png at the swelling
+    kind's tau_L and 2 tau_L; assembly.npz at once. name: the run's name in titles and tables
+    (results.json 'scenario'). Call it after setting solver.stepHook to one's own recording, if
+    any: it becomes the solver's stepHook and calls that one after its own. Returns the
+    StepRecorder; its `res` is the results dict."""
+    from ..paper import KIND_NAMES as _names
+    from ..report import write_all
+    from .scene import functor_kinds, kind_settings, solver_settings
+    yade, _ = _yade()
+    os.makedirs(out, exist_ok=True)
+    assembly.save(os.path.join(out, "assembly.npz"))
+    kinds = functor_kinds(yscene.ip2)
+    settings = {n: kind_settings(k) for n, k in kinds.items()}
+    behaviours = {v["behaviour"] for n, v in settings.items() if n in ("MORTAR", "ITZ")} or {"elastic"}
+    res = {"scenario": name, "behaviour": "viscoelastic" if "viscoelastic" in behaviours else sorted(behaviours)[0],
+           "damage": any(v.get("damage") for v in settings.values()), "solver": "implicit" if "Implicit" in type(solver).__name__ else "adr",
+           "tolerance": solver.tolerance, "config": {"size_mm": [assembly.width_m * 1e3, assembly.height_m * 1e3]},
+           "solver_settings": solver_settings(solver), "kinds": settings, "d_inf_m": None, "r_mean_m": float(assembly.r.mean()),
+           "n_particles": int(len(assembly.x)), "n_contacts_by_kind": {n: int((assembly.kind == k).sum()) for k, n in enumerate(_names)},
+           "times_days": [], "swelling_strain_x": [], "swelling_strain_y": [], "swelling_strain_area": [],
+           "platen_stress_x_Pa": [], "platen_stress_y_Pa": [], "platen_disp_x_m": [], "platen_disp_y_m": [], "unbalanced_ratio": [],
+           "iterations_per_step": [], "step_at_round_off": [], "round_off_ratio": [], "iterations": 0, "newton_iterations": 0,
+           "relaxation_iterations": 0, "per_kind": {n: {"fn_p05_kN": [], "fn_p95_kN": [], "broken": [], "born_broken": []} for n in _names},
+           "temperature": {"source": "the kinds' own", "per_kind": {n: {"days": list(k.temperatureDays), "temperatures_K": list(k.temperatures)}
+                                                                    for n, k in kinds.items()}},
+           "status": "running", "wall_s": 0.0}
+    swelling = [v for v in settings.values() if v.get("swelling") and (v.get("swellDispInf") or 0) > 0]
+    res["d_inf_m"] = float(swelling[0]["swellDispInf"]) if swelling else 0.0
+    rec = StepRecorder(assembly, yscene, solver, res, out, vtk_every=vtk_every)
+    own = solver.stepHook
+
+    def hook():
+        rec()
+        if len(res["times_days"]) >= int(solver.nSteps):  # the last step: the run's figures and tables
+            res["status"] = "finished"
+            rec.export_vtk()
+            write_results(out, res)
+            write_all(out, res, assembly, broken_contacts(rec.bonded))
+        if own is not None:
+            own()
+
+    solver.stepHook = hook
+    return rec

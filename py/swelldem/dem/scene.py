@@ -289,3 +289,23 @@ def run_to_end(solver, chunk=2000):
     yade, _ = _yade()
     while not solver.finished:
         yade.Omega().run(chunk, True)
+
+
+def run_chunk_quietly(solver, chunk=2000):
+    """Runs at most `chunk` iterations of O (fewer when the solver or a step hook stops O): by
+    O.run while the solver cannot reach its maxIterations within them, else by O.step, one
+    iteration at a time. A step that finds no equilibrium then raises its RuntimeError in Python
+    just the same, but without YADE's 'FATAL ERROR ... ThreadRunner' and 'pyOmega::wait()' lines:
+    YADE prints those for an exception in the thread that O.run iterates in, while O.step iterates
+    in the caller's thread and hands the exception over unprinted. For an ending that is expected,
+    such as a virtual test driven past its peak (swelldem.residual). The iterations are the same
+    either way: the results do not change. The count a step may take before it fails starts again
+    after breaks (the solver's message says 'since the last breaks'), so it is at least the
+    iterations of the step: chunks shorter than maxIterations - iterInStep cannot fail."""
+    yade, _ = _yade()
+    O = yade.Omega()
+    safe = int(solver.maxIterations) - int(solver.iterInStep) - 1
+    if safe >= 1:
+        O.run(min(int(chunk), safe), True)
+    else:
+        O.step()
