@@ -671,12 +671,17 @@ Eigen::VectorXd ImplicitLogTimeSolver::solveWithCoupling(const Eigen::VectorXd& 
 		const auto& col = *use[i];
 		const auto  it  = kept.find(std::make_tuple(col.id1, col.id2, col.type, col.value));
 		if (it != kept.end()) {
-			// kept while its u is within refactorTolerance of the one it was solved for, as the factor
+			// kept while its u is within refactorTolerance of the one it was solved for, as the factor.
+			// A 3D sliding contact's coupling turns with its shear force at every iteration: kept
+			// within 10 % (about 6 degrees), a modified tangent like a kept factor (12 mm cube, ISR,
+			// 2 steps a decade: 35 s and 791 iterations, against 49 s re-solving it at every turn and
+			// 30 s but 983 iterations without the coupling at all).
 			const size_t j     = index[i] = it->second;
+			const Real   keep  = col.type == 2 && S.nb == 6 ? std::max(refactorTolerance, Real(0.1)) : refactorTolerance;
 			Real         drift = 0, size = 0;
 			for (int k = 0; k < S.nc(); ++k)
 				drift = std::max(drift, std::abs(col.u[k] - lowRankColumns[j].u[k])), size = std::max(size, std::abs(col.u[k]));
-			if (!(drift > refactorTolerance * size)) continue;
+			if (!(drift > keep * size)) continue;
 			std::copy(col.u, col.u + LowRankColumn::kSize, lowRankColumns[j].u);
 			solveColumn(j);
 			continue;

@@ -59,6 +59,10 @@ void Ip2_ConcreteMat_ConcreteMat_SwellPhys::go(const shared_ptr<Material>& m1, c
 			Eigen::Index k = 2;
 			geom->normal.cwiseAbs().minCoeff(&k);
 			p->frameAxis = int(k);
+			// a 3D contact without a Laguerre facet (made by the collider during a run, or a
+			// platen's): the smaller sphere's cross-section, not a 2D section's 2 r b
+			const Real r = std::min(geom->refR1, geom->refR2);
+			p->area      = M_PI * r * r;
 		}
 	}
 	// An Ip2 may not throw (YADE calls it inside its parallel loops), nor leave a contact without

@@ -18,7 +18,7 @@ public:
 	X(shared_ptr<ContactKind>, platen, shared_ptr<ContactKind>(), swelldem_attr::Setting, "Kind of contacts with a platen (ConcreteMat.platen; PLATEN) [-]")                  \
 	X(shared_ptr<ContactKind>, steel, shared_ptr<ContactKind>(), swelldem_attr::Setting, "Kind of contacts between two steel discs of a bar (ConcreteMat.steel; STEEL) [-]")    \
 	X(shared_ptr<ContactKind>, bond, shared_ptr<ContactKind>(), swelldem_attr::Setting, "Kind of contacts between steel and concrete (BOND) [-]")                             \
-	X(Real, thickness, 1.0, swelldem_attr::Setting, "Out-of-plane thickness b of the 2D model; fallback facet area 2 min(r1, r2) b when no Laguerre facet is given [m]")      \
+	X(Real, thickness, 1.0, swelldem_attr::Setting, "Out-of-plane thickness b of the 2D model; fallback facet area 2 min(r1, r2) b when no Laguerre facet is given (3D: pi min(r1, r2)^2) [m]")      \
 	X(bool, cohesive, true, swelldem_attr::Setting, "Contacts created while true are intact (bonded) and stress-free as created; while false they are born broken "   \
 	                             "(compression and friction only) and stress-free when the discs just touch [-]")
 	SWELLDEM_CLASS(Ip2_ConcreteMat_ConcreteMat_SwellPhys, IPhysFunctor,

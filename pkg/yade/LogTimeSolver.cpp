@@ -157,12 +157,12 @@ void LogTimeSolver::initialize()
 {
 	postLoad();
 	// 2D: every body in the plane (z, x and y rotations blocked); 3D: no free body so held. A body
-	// held in every direction belongs to either.
+	// free to move along one axis at most (a platen, a held disc or sphere) belongs to either.
 	long planar = -1, spatial = -1;
 	for (const auto& b : scene->bodies->body) {
 		if (!b) continue;
 		const unsigned blocked = b->state->blockedDOFs;
-		if ((blocked & kAllDOF) == kAllDOF) continue;
+		if (!(blocked & State::DOF_X) + !(blocked & State::DOF_Y) + !(blocked & State::DOF_Z) <= 1) continue;
 		if ((blocked & kNeed2D) == kNeed2D) {
 			if (planar < 0) planar = b->id;
 		} else if (spatial < 0)

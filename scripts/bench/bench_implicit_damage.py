@@ -7,7 +7,7 @@ shares counted over the contacts bonded at the start:
         --behaviour elastic --size-mm 40 40 --seed 1 --solver implicit [--tolerance TOL] \\
         [--break-rule all|one] [--steps-per-decade 10] [--parameters paper-micro] \\
         [--solver-param lowRankChanges=0 ...] [--out DIR]
-    ... --dim 3 --size-mm 15 15 15 --solver adr [--aggregate-area-fraction F]   (a 3D box)
+    ... --dim 3 --size-mm 15 15 15 [--solver adr] [--aggregate-area-fraction F]   (a 3D box)
 
 Prints one line `RESULT {json}`: status ('finished' or 'failed: <message>'), iterations, wall
 time of the run [s] (set-up excluded), the final swelling strains, and the broken share [%] of the
@@ -35,7 +35,7 @@ def main(argv):
     ap.add_argument("--scenario", choices=list(paper.SCENARIOS), default="isr")
     ap.add_argument("--behaviour", choices=["elastic", "viscoelastic"], default="elastic")
     ap.add_argument("--size-mm", type=float, nargs="+", default=[20.0, 20.0], help="W H, or W H D with --dim 3")
-    ap.add_argument("--dim", type=int, default=2, help="2: a section; 3: a box of spheres (solver adr)")
+    ap.add_argument("--dim", type=int, default=2, help="2: a section; 3: a box of spheres")
     ap.add_argument("--aggregate-area-fraction", type=float, default=-1.0, help="< 0: the generator's default")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--solver", choices=["adr", "implicit"], default="implicit")
@@ -78,7 +78,8 @@ def main(argv):
     result = {
         "scenario": a.scenario, "behaviour": a.behaviour, "size_mm": list(a.size_mm), "seed": a.seed, "solver": a.solver,
         "break_rule": a.break_rule, "status": status, "iterations": solver.totalIterations, "wall_s": round(wall, 2),
-        "factorizations": getattr(solver, "factorizations", None), "settings": dict(item.split("=", 1) for item in a.solver_param),
+        "factorizations": getattr(solver, "factorizations", None), "factor_wall_s": getattr(solver, "factorSeconds", None),
+        "factor_nonzeros": getattr(solver, "factorNonZeros", None), "settings": dict(item.split("=", 1) for item in a.solver_param),
         "strain_x": float(strain["eps_xx"]), "strain_y": float(strain["eps_yy"]), "broken_pct": pct,
         "n_particles": int(len(assembly.x)), "n_contacts": int(len(ys.contacts)),
         "peak_mb": round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, 1)}

@@ -136,7 +136,8 @@ def to_yade(assembly, kinds, solver, reset=True, density=2400.0, young=30e9, poi
     aggs = [W.ConcreteMat(young=young, poisson=poisson, density=density, aggregateId=k, label=f"aggregate{k}")
             for k in range(assembly.n_aggregates)]
     fixed = () if fixed is None else fixed
-    # In 3D the Ip2's thickness is unused: every contact's area is the assembly's facet area.
+    # In 3D the Ip2's thickness is unused: a contact's area is the assembly's facet area, or the smaller
+    # sphere's cross-section for one made during the run (and a platen's).
     ip2 = sc.concrete_ip2(kinds, thickness=float(assembly.thickness_m) if dim == 2 else 1.0, cohesive=True)
     # The assembly's contacts: bonded, stress-free at their initial distance, facet area from Laguerre.
     contacts = np.asarray(assembly.contacts, dtype=np.int64).reshape(-1, 2)
