@@ -6,7 +6,7 @@
       [--steps-per-decade N] [--tolerance TOL] [--kind-param MORTAR.tensileStrength=5e6 ...] \
       [--solver-param fallbackIterations=3 ...] \
       [--temperature-c T | --temperature-csv FILE] [--boundary-x free|fixed|stress:S|spring:K] \
-      [--boundary-y ...] [--rebar-ratio R] [--save-state] --out DIR
+      [--boundary-y ...] [--boundary-z ... (3D)] [--rebar-ratio R] [--save-state] --out DIR
   scripts/yade-swelldem -n -x scripts/swelling_test.py --resume DIR
   scripts/yade-swelldem -n -x scripts/swelling_test.py --dim 3 --size-mm W H D --solver adr ... --out DIR
 

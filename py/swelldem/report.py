@@ -194,7 +194,7 @@ def run_conditions(res):
         out.append(f"{cfg['temperature_c']:g} C")
     elif cfg.get("temperature_csv"):
         out.append(f"temperature history {os.path.basename(str(cfg['temperature_csv']))}")
-    for axis in ("x", "y"):
+    for axis in ("x", "y", "z"):
         if cfg.get(f"boundary_{axis}", "free") != "free":
             out.append(f"{axis} sides {cfg[f'boundary_{axis}']}")
     if cfg.get("rebar_ratio"):
@@ -473,7 +473,7 @@ def plot_strain(path, res):
 def _structures(res):
     """The run's structures that load the specimen: platen axes (boundary other than free) and bars."""
     cfg = res.get("config") or {}
-    axes = [a for a in ("x", "y") if cfg.get(f"boundary_{a}", "free") != "free"]
+    axes = [a for a in ("x", "y", "z") if cfg.get(f"boundary_{a}", "free") != "free"]
     return axes + (["bars"] if res.get("rebar") else [])
 
 
@@ -486,9 +486,9 @@ def plot_structure_stress(path, res):
     t = np.array(res["times_days"])
     fig, ax = plt.subplots(figsize=(7, 4.5))
     cfg = res.get("config") or {}
-    for axis in ("x", "y"):
+    for axis in ("x", "y", "z"):
         if cfg.get(f"boundary_{axis}", "free") != "free":
-            ax.semilogx(t, np.array(res[f"platen_stress_{axis}_Pa"]) / 1e6, "o-" if axis == "x" else "^-", ms=3,
+            ax.semilogx(t, np.array(res[f"platen_stress_{axis}_Pa"]) / 1e6, {"x": "o-", "y": "^-", "z": "s-"}[axis], ms=3,
                         color=COLORS["PLATEN"], label=f"platens on the {axis} sides ({cfg[f'boundary_{axis}']}): mean normal stress")
     if res.get("rebar"):
         bar = res["rebar"]
@@ -838,6 +838,7 @@ STEP_SERIES = {"times_days": ("t", "d"), "swelling_strain_x": ("swelling_strain_
                "swelling_strain_area": ("swelling_strain_area", "-"), "swelling_strain_volume": ("swelling_strain_volume", "-"),
                "platen_stress_x_Pa": ("platen_stress_x", "Pa"), "platen_disp_x_m": ("platen_disp_x", "m"),
                "platen_stress_y_Pa": ("platen_stress_y", "Pa"), "platen_disp_y_m": ("platen_disp_y", "m"),
+               "platen_stress_z_Pa": ("platen_stress_z", "Pa"), "platen_disp_z_m": ("platen_disp_z", "m"),
                "rebar_stress_max_Pa": ("rebar_stress_max", "Pa"), "rebar_stress_mean_Pa": ("rebar_stress_mean", "Pa"),
                "unbalanced_ratio": ("unbalanced_ratio", "-"), "iterations_per_step": ("iterations", "-"),
                "step_at_round_off": ("step_at_round_off", "-"), "round_off_ratio": ("round_off_ratio", "-")}

@@ -20,7 +20,7 @@ Decisions (docs/scenarios.md explains them):
 - 'elastic' runs use aging-elastic mortar and ITZ contacts, E(t) = 1/J(t + 0.01 d, t) of the same
   B3 q's (the paper: "included the development over time of mortar and ITZ modulus");
   aggregate contacts are linear elastic (modulus paper.AGGREGATE_YOUNG, an assumption: the paper gives none);
-- the specimen is free (no support) unless boundary_x / boundary_y put platens on its sides
+- the specimen is free (no support) unless boundary_x / boundary_y (/ boundary_z in 3D) put platens on its sides
   (swelldem.dem.platens); strains are the least-squares affine fit of the skeleton's displacements.
 
 Validation: SwellingTest.validate checks every field (NaN and infinity included) in Python, with
@@ -100,6 +100,8 @@ class SwellingTest:
                                      "negative) or spring:K (partial restraint, K [N/m per metre of thickness]); "
                                      "swelldem.dem.platens")
     boundary_y: str = _field("free", "platens on the y sides, as boundary_x")
+    boundary_z: str = _field("free", "platens on the z sides of a 3D box, as boundary_x (a spring's K per square metre of the face "
+                                     "in 3D); free for a 2D section")
     rebar_ratio: float = _field(0.0, "reinforcement ratio: steel area over the specimen's cross-section, in one bar along x at "
                                      "mid-height, or in rebar_bars evenly spaced bars (0: none; swelldem.dem.rebar)", unit="-")
     rebar_bars: int = _field(1, "number of bars along x, evenly spaced across the height")
@@ -159,8 +161,10 @@ class SwellingTest:
         if not isinstance(self.save_state, bool):
             _bad("save_state", self.save_state, "True, False")
         from .dem.platens import Boundary  # plain Python: the parse needs no YADE
-        for axis in ("x", "y"):
+        for axis in ("x", "y", "z"):
             Boundary.parse(f"boundary_{axis}", getattr(self, f"boundary_{axis}"))
+        if self.dim == 2 and self.boundary_z != "free":
+            _bad("boundary_z", self.boundary_z, "free for a 2D section (dim 2 has no z sides)")
         from .dem.rebar import MAX_RATIO
         options.number("rebar_ratio", self.rebar_ratio, lo=0, hi=MAX_RATIO, lo_incl=True, hi_incl=True)
         options.integer("rebar_bars", self.rebar_bars, lo=1)
@@ -196,11 +200,8 @@ class SwellingTest:
             options.tolerance("solver_params tolerance", tol, solver=self.solver)  # the loose-tolerance warning
 
     def _validate_3d(self):
-        """What a 3D box does not take (yet): the structures of a section (platens, restraint, bars)
-        and the macro calibration (a 2D test)."""
-        for axis in ("x", "y"):
-            if getattr(self, f"boundary_{axis}") != "free":
-                _bad(f"boundary_{axis}", getattr(self, f"boundary_{axis}"), "free when dim is 3 (platens hold the sides of a section)")
+        """What a 3D box does not take (yet): bars (laid in a section) and the macro calibration (a
+        2D test)."""
         if self.rebar_ratio != 0:
             _bad("rebar_ratio", self.rebar_ratio, "0 when dim is 3 (bars are laid in a section)")
         if self.parameters != "paper-micro":
@@ -735,7 +736,7 @@ def build(test, prepared=None, extra_times=(), assembly=None, reset=True, t0=Non
         from .dem import rebar
         bars = rebar.add_bars(assembly, ys, lay, kinds["ITZ"], test.kind_params.get("BOND"))
     from .dem.platens import Boundary, add_platens
-    platens = add_platens(assembly, ys, Boundary.parse("boundary_x", test.boundary_x), Boundary.parse("boundary_y", test.boundary_y))
+    platens = add_platens(assembly, ys, *(Boundary.parse(f"boundary_{a}", getattr(test, f"boundary_{a}")) for a in ("x", "y", "z")))
     return Built(test=test, kinds=kinds, solver=solver, assembly=assembly, scene=ys, d_inf=d_inf, r_mean=r_mean, calibration=cal,
                  gel=gel, bars=bars, platens=platens, layout=lay)
 
@@ -837,7 +838,7 @@ def run(test, prepared=None, extra_times=(), after_step=None, resume=False):
            "status": "running", "wall_s": 0.0, "yade_tags": batch_tags()}
     if test.dim == 3:  # a box: the z strain and the volume change instead of the area change
         del res["swelling_strain_area"]
-        res.update(dim=3, swelling_strain_z=[], swelling_strain_volume=[])
+        res.update(dim=3, swelling_strain_z=[], swelling_strain_volume=[], platen_stress_z_Pa=[], platen_disp_z_m=[])
     if bars is not None:
         res["rebar"] = {"ratio": lay.ratio, "n_bars": lay.n_bars, "y_m": list(lay.y_m), "thickness_m": lay.thickness_m,
                         "disc_radius_m": lay.radius_m, "young_Pa": lay.young, "yield_stress_Pa": lay.yield_stress, "yield_day": None,

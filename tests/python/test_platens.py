@@ -223,3 +223,41 @@ def test_a_scene_with_platens_springs_bars_and_temperature_restarts_exactly(yade
     got = json.loads((tmp_path / "reload.json").read_text())
     assert got["at_load"] == ref["at_save"]
     assert got["end"] == ref["end"]
+
+
+# ---------------------------------------------------------------- 3D: any face pair of a box
+
+def _box_run(tmp_path, solver, *extra):
+    out = tmp_path / solver
+    proc = subprocess.run([LAUNCHER, "-j", "1", "-n", "-x", SCRIPT, "--dim", "3", "--size-mm", "8", "8", "8",
+                           "--aggregate-area-fraction", "0", "--behaviour", "elastic", "--no-damage", "--steps-per-decade", "1",
+                           "--solver", solver, *extra, "--out", str(out)],
+                          capture_output=True, text=True, timeout=600, env=dict(os.environ, SWELLDEM_BUILD_DIR=build_dir()))
+    assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
+    return json.load(open(out / "results.json")), out
+
+
+# measured: the z platens' stress -5 MPa to 1.4e-11 (implicit) and 8.6e-5 (ADR at its tolerance
+# 1e-4) at the last step; bounds 1e-9 and 1e-3
+@pytest.mark.parametrize("solver, rel", [("implicit", 1e-9), ("adr", 1e-3)])
+def test_a_box_under_an_applied_stress_on_its_z_faces(tmp_path, solver, rel):
+    r, out = _box_run(tmp_path, solver, "--boundary-z", "stress:-5e6")
+    # the platens carry the load applied to them (their force balance), at every step
+    assert np.allclose(r["platen_stress_z_Pa"], -5e6, rtol=rel)
+    assert r["platen_stress_x_Pa"] == [0.0] * len(r["times_days"]) and r["platen_disp_z_m"][0] < 0
+    ex, ey, ez = (r[f"swelling_strain_{a}"][-1] for a in "xyz")
+    print("measured", solver, "strains", ex, ey, ez, "platen stress", r["platen_stress_z_Pa"][-1])
+    # the load shortens the box along z and widens it across (Poisson), which swells alike in x and y:
+    # measured (implicit) 1.15e-3, 1.14e-3 and 1.3e-4 against about 0.97e-3 free
+    assert ez < 0.5 * min(ex, ey) and abs(ex - ey) < 0.05 * ex
+    assert "Conditions: z sides stress:-5e6" in (out / "table.md").read_text() and (out / "structure_stress.png").exists()
+    with open(out / "curves.csv") as f:
+        assert "platen_stress_z [Pa]" in f.readline()
+
+
+def test_z_sides_are_refused_on_a_2d_section(tmp_path):
+    out = tmp_path / "run"
+    proc = subprocess.run([LAUNCHER, "-j", "1", "-n", "-x", SCRIPT, "--boundary-z", "fixed", "--out", str(out)],
+                          capture_output=True, text=True, timeout=300, env=dict(os.environ, SWELLDEM_BUILD_DIR=build_dir()))
+    assert proc.returncode == 2 and "boundary_z = 'fixed' is out of range; allowed: free for a 2D section" in proc.stderr, proc.stderr[-2000:]
+    assert not out.exists()

@@ -211,8 +211,8 @@ def test_the_swelling_test_of_a_3d_box_records_x_y_z_and_the_volume(tmp_path):
 @pytest.mark.parametrize("args, message", [
     (("--dim", "3", "--size-mm", "30", "30", "--solver", "adr"), "size_mm = "),
     (("--size-mm", "30", "30", "30"), "size_mm = "),
-    (("--dim", "3", "--size-mm", "30", "30", "30", "--solver", "adr", "--boundary-x", "fixed"),
-     "boundary_x = 'fixed' is out of range; allowed: free when dim is 3"),
+    (("--dim", "3", "--size-mm", "30", "30", "30", "--rebar-ratio", "0.01"),
+     "rebar_ratio = 0.01 is out of range; allowed: 0 when dim is 3"),
     (("--dim", "4",), "dim = 4 is out of range"),
 ])
 def test_what_a_3d_box_does_not_take_is_refused_before_any_work(tmp_path, args, message):

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 """Rigid platens on the sides of a specimen: free, fixed (restrained), at a constant applied
-stress, or held by a spring (partial restraint), per axis.
+stress, or held by a spring (partial restraint), per axis (x, y; and z for a 3D box).
 
 Each loaded axis gets two YADE Wall bodies at the specimen's extreme disc edges. The low one
 (left, bottom) is fixed; the high one (right, top) is fixed, loaded by a constant force (YADE's
@@ -21,9 +21,14 @@ platen later get a cohesionless (compression-only) contact from the collider, li
 made during a run.
 
 Platen stress [Pa] (compression negative) is the platens' contact force along their axis over the
-specimen's nominal side (height for the x platens, width for the y platens) times the thickness:
-the mean of the two platens' reactions. Platen displacement [m] is the change of the distance
-between the two platens (elongation positive).
+specimen's nominal face (2D: height for the x platens, width for the y platens, times the
+thickness; 3D: the product of the box's two other sides): the mean of the two platens' reactions.
+Platen displacement [m] is the change of the distance between the two platens (elongation
+positive).
+
+In a 3D box the same holds face for face: the spheres that face a platen (none closer to it within
+a radius across) get its contact, whose facet is the sphere's cross-section (the Ip2's 3D fallback);
+a spring's K is per square metre of the face [N/m / m2], a 2D one's per metre of thickness.
 """
 from dataclasses import dataclass
 
@@ -39,13 +44,14 @@ PLATEN_YOUNG = 200e9
 #: ks / kn of platen contacts [-]: lubricated platens (nearly frictionless, but not a mechanism).
 PLATEN_SHEAR_RATIO = 1e-6
 BOUNDARY_TYPES = ("free", "fixed", "stress", "spring")
-AXES = ("x", "y")
+AXES = ("x", "y", "z")
 
 
 @dataclass(frozen=True)
 class Boundary:
     """The condition of one axis: type 'free', 'fixed', 'stress' (value: applied stress [Pa],
-    compression negative) or 'spring' (value: stiffness [N/m per metre of thickness])."""
+    compression negative) or 'spring' (value: stiffness [N/m per metre of thickness in 2D, per
+    square metre of the face in 3D])."""
     type: str = "free"
     value: float = 0.0
 
@@ -53,7 +59,8 @@ class Boundary:
     def parse(cls, name, text):
         """'free', 'fixed', 'stress:S' or 'spring:K' -> Boundary; ValueError in the options'
         message form naming `name` otherwise."""
-        allowed = "free, fixed, stress:S (S in Pa, finite, compression negative) or spring:K (K in N/m per metre of thickness, 0 < K < inf)"
+        allowed = ("free, fixed, stress:S (S in Pa, finite, compression negative) or spring:K (K in N/m per metre of thickness, "
+                   "per square metre of the face in 3D, 0 < K < inf)")
         if not isinstance(text, str):
             options.bad(name, text, allowed)
         head, colon, tail = text.strip().partition(":")
@@ -81,7 +88,7 @@ class Platens:
         self.start = {a: self._distance(a) for a in walls}
 
     def _distance(self, axis):
-        """The platens' distance along axis 'x' or 'y' now [m]."""
+        """The platens' distance along axis 'x', 'y' or 'z' now [m]."""
         yade, _ = sc.require("swelldem.dem.platens")
         O = yade.Omega()
         k = AXES.index(axis)
@@ -89,7 +96,7 @@ class Platens:
         return float(O.bodies[hi].state.pos[k] - O.bodies[lo].state.pos[k])
 
     def force_on(self, body_id, axis):
-        """Sum of the contact forces on one body along axis k (0 x, 1 y) [N]."""
+        """Sum of the contact forces on one body along axis k (0 x, 1 y, 2 z) [N]."""
         yade, _ = sc.require("swelldem.dem.platens")
         O = yade.Omega()
         total = 0.0
@@ -101,7 +108,7 @@ class Platens:
         return total
 
     def stress(self, axis):
-        """Platen stress along axis 'x' or 'y' [Pa], compression negative; 0 without platens."""
+        """Platen stress along axis 'x', 'y' or 'z' [Pa], compression negative; 0 without platens."""
         if axis not in self.walls:
             return 0.0
         k = AXES.index(axis)
@@ -109,36 +116,42 @@ class Platens:
         return 0.5 * (self.force_on(lo, k) - self.force_on(hi, k)) / self.area[axis]
 
     def displacement(self, axis):
-        """Change of the platens' distance along axis 'x' or 'y' [m] (elongation positive); 0 without platens."""
+        """Change of the platens' distance along axis 'x', 'y' or 'z' [m] (elongation positive); 0 without platens."""
         return self._distance(axis) - self.start[axis] if axis in self.walls else 0.0
 
 
 def facing_discs(depth, across, r, band):
-    """Indices of the discs that face a platen: within `band` [m] of the outermost disc edge along
-    the platen's normal, and not hidden from it by another disc (no disc closer to the platen
-    covers the line from the disc's centre to it). depth: disc centres along the outward normal
-    [m]; across: centres along the platen [m]; r: radii [m]."""
+    """Indices of the discs (spheres) that face a platen: within `band` [m] of the outermost edge
+    along the platen's normal, and not hidden from it by another (none closer to the platen covers
+    the line from the centre to it). depth: centres along the outward normal [m]; across: centres
+    along the platen [m], (n,) for discs or (n, 2) for spheres; r: radii [m]."""
     edge = depth + r
+    across = np.asarray(across, dtype=float)
     cand = np.flatnonzero(edge > edge.max() - band)
     out = []
     for i in cand:
-        hiding = (depth > depth[i]) & (np.abs(across - across[i]) < r)
+        off = np.abs(across - across[i]) if across.ndim == 1 else np.linalg.norm(across - across[i], axis=1)
+        hiding = (depth > depth[i]) & (off < r)
         hiding[i] = False
         if not hiding.any():
             out.append(int(i))
     return np.array(out, dtype=np.int64)
 
 
-def add_platens(assembly, yscene, boundary_x=Boundary(), boundary_y=Boundary(), young=PLATEN_YOUNG,
+def add_platens(assembly, yscene, boundary_x=Boundary(), boundary_y=Boundary(), boundary_z=Boundary(), young=PLATEN_YOUNG,
                 shear_ratio=PLATEN_SHEAR_RATIO, band=None):
     """Adds the platens of the non-free axes to the scene made by swelldem.dem.to_yade (before
-    the run starts); returns a :class:`Platens`, or None when both axes are free.
-    band [m]: the discs facing a platen within this depth of the outermost disc edge get a contact
-    with it (default 1.5 Rmax; facing_discs)."""
-    boundaries = {"x": boundary_x, "y": boundary_y}
+    the run starts); returns a :class:`Platens`, or None when every axis is free.
+    boundary_z: a 3D box's z sides (free for a 2D section).
+    band [m]: the discs (spheres) facing a platen within this depth of the outermost edge get a
+    contact with it (default 1.5 Rmax; facing_discs)."""
+    dim = getattr(assembly, "dim", 2)
+    boundaries = {"x": boundary_x, "y": boundary_y, "z": boundary_z}
     for a, b in boundaries.items():
         if not isinstance(b, Boundary) or b.type not in BOUNDARY_TYPES:
             options.bad(f"boundary_{a}", b, "a swelldem.dem.platens.Boundary")
+    if dim == 2 and boundary_z.type != "free":
+        options.bad("boundary_z", str(boundary_z), "free for a 2D section (no z sides)")
     if all(b.type == "free" for b in boundaries.values()):
         return None
     yade, W = sc.require("swelldem.dem.platens")
@@ -154,13 +167,22 @@ def add_platens(assembly, yscene, boundary_x=Boundary(), boundary_y=Boundary(), 
         elif getattr(e, "label", "") == "collider":
             e.boundDispatcher.functors = list(e.boundDispatcher.functors) + [W.Bo1_Wall_Aabb()]
     band = 1.5 * float(assembly.r.max()) if band is None else band
-    thickness = float(assembly.thickness_m)
     centre = {"x": assembly.x, "y": assembly.y}
-    side = {"x": assembly.height_m, "y": assembly.width_m}  # the platen's nominal length
+    if dim == 3:
+        centre["z"] = assembly.z
+        size = {"x": assembly.width_m, "y": assembly.height_m, "z": assembly.depth_m}
+        # the face's area: the product of the box's two other sides
+        face = {a: float(np.prod([size[o] for o in AXES if o != a])) for a in AXES}
+        per = face  # a spring's K is per square metre of the face
+    else:
+        thickness = float(assembly.thickness_m)
+        face = {"x": assembly.height_m * thickness, "y": assembly.width_m * thickness}
+        per = {"x": thickness, "y": thickness}  # a spring's K is per metre of thickness
+    axes = AXES[:dim]
     walls, area, forces = {}, {}, []
     ip2.cohesive = True
     try:
-        for k, a in enumerate(AXES):
+        for k, a in enumerate(axes):
             b = boundaries[a]
             if b.type == "free":
                 continue
@@ -173,16 +195,17 @@ def add_platens(assembly, yscene, boundary_x=Boundary(), boundary_y=Boundary(), 
                 where = [0.0, 0.0, 0.0]
                 where[k] = pos
                 body = yade.utils.wall(tuple(where), axis=k, sense=sense, material=mat)
-                body.state.blockedDOFs = ("yzXYZ" if a == "x" else "xzXYZ") if moves else "xyzXYZ"
+                body.state.blockedDOFs = "".join(d for d in "xyz" if d != a) + "XYZ" if moves else "xyzXYZ"
                 wid = O.bodies.append(body)
                 ids.append(wid)
-                near = facing_discs(c if sense < 0 else -c, centre[AXES[1 - k]], assembly.r, band)
+                others = [centre[o] for o in axes if o != a]
+                near = facing_discs(c if sense < 0 else -c, others[0] if dim == 2 else np.c_[others[0], others[1]], assembly.r, band)
                 for i in near:
                     I = yade.utils.createInteraction(wid, int(yscene.ids[i]))
                     if I is None or not I.isReal:
                         raise RuntimeError(f"swelldem: the platen contact of disc {int(i)} did not become a real interaction")
             walls[a] = tuple(ids)
-            area[a] = side[a] * thickness
+            area[a] = face[a]
             hi = ids[1]
             if b.type == "stress":
                 f = [0.0, 0.0, 0.0]
@@ -191,7 +214,7 @@ def add_platens(assembly, yscene, boundary_x=Boundary(), boundary_y=Boundary(), 
             elif b.type == "spring":
                 solver.springBodies = list(solver.springBodies) + [hi]
                 solver.springAxes = list(solver.springAxes) + [k]
-                solver.springStiffness = list(solver.springStiffness) + [b.value * thickness]
+                solver.springStiffness = list(solver.springStiffness) + [b.value * per[a]]
     finally:
         ip2.cohesive = False
     if forces:  # before the solver, the last engine

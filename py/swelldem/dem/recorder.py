@@ -223,7 +223,9 @@ class StepRecorder:
             r["swelling_strain_volume"].append(change)
         else:
             r["swelling_strain_area"].append(change)
-        for axis in ("x", "y"):
+        for axis in ("x", "y", "z"):
+            if f"platen_stress_{axis}_Pa" not in r:  # z: a 3D box's only
+                continue
             r[f"platen_stress_{axis}_Pa"].append(self.platens.stress(axis) if self.platens else 0.0)
             r[f"platen_disp_{axis}_m"].append(self.platens.displacement(axis) if self.platens else 0.0)
         if self.bars is not None:
