@@ -808,9 +808,10 @@ def plot_crack_sections(out, res, assembly, broken_contacts, step=-1, name="crac
     return crack_section_rows(sections, name, t)
 
 
-def plot_crack_view_3d(out, res, assembly, broken_contacts, step=-1, name="crack_map_3d.png"):
+def plot_crack_view_3d(out, res, assembly, broken_contacts, step=-1, name="crack_map_3d_view.png"):
     """A 3D box's broken contacts as points at their facet centroids in a 3D view, coloured by kind
-    (COLORS), with the box's edges; the legend counts them per kind."""
+    (COLORS), with the box's edges; the legend counts them per kind. Named so that no
+    crack_map_<day>d.png (a map at day 3 is crack_map_3d.png) can take its name."""
     plt = _plt()
     from mpl_toolkits.mplot3d.art3d import Line3DCollection
     index = {(int(i), int(j)): c for c, (i, j) in enumerate(assembly.contacts)}
@@ -900,7 +901,7 @@ def plot_crack_maps(out, res, assembly, breaks, days, rows=None):
 def write_all(out, res, assembly, broken_contacts):
     """Tables, curves, the crack map at the end and, with the recorder's contact_breaks.npz, at
     crack_map_days(res); broken_contacts: (id1, id2, kindId) of the broken contacts at the end. A
-    3D box's maps are mid-plane sections (plot_crack_sections), with crack_map_3d.png (the broken
+    3D box's maps are mid-plane sections (plot_crack_sections), with crack_map_3d_view.png (the broken
     contacts in 3D) and crack_sections.csv (the sections' counts)."""
     write_tables(out, res)
     plot_curves(out, res)
