@@ -782,7 +782,7 @@ def plot_crack_sections(out, res, assembly, broken_contacts, step=-1, name="crac
     from matplotlib.lines import Line2D
     sections = crack_sections(assembly, broken_contacts, _map_kinds(res))
     size = np.asarray(assembly.specimen_size_m) * 1e3
-    widths = [size[s["hor"]] for s in sections]
+    widths = [size[s["hor"]] / size[s["ver"]] for s in sections]  # panels of one height, each its section's aspect
     fig, axes = plt.subplots(1, 3, figsize=(15, 6.2), gridspec_kw={"width_ratios": widths})
     for ax, sec in zip(axes, sections):
         _fill_aggregates(ax, sec["aggregates"])
