@@ -16,8 +16,9 @@ or of every k-th with --vtk-every k, and particles.pvd / contacts.pvd with the t
 DIR/curves.csv and DIR/plot_data.txt (every per-step series; the second in yade.plot.saveDataTxt's form)
 and, with --save-state, DIR/state.yade after every step (--resume DIR continues a run stopped
 after some steps from it, with the run's own settings) and DIR/final.yade.gz at the end.
-A 3D box (--dim 3) writes the same but for the crack maps, which draw a section's polygons; its
-results gain the z strain and the volume change, its ParaView files hold the spheres as points.
+A 3D box (--dim 3) writes the same, its crack maps as three mid-plane sections, with
+DIR/crack_map_3d_view.png (the broken contacts in 3D) and DIR/crack_sections.csv (the sections' counts);
+its results gain the z strain and the volume change, its ParaView files hold the spheres as points.
 The options are the fields of swelldem.scenario.SwellingTest; --kind-param sets any ContactKind
 attribute of one kind, --solver-param any setting of the solver (see `--help`).
 

@@ -452,10 +452,15 @@ def _max(*series):
 
 def plot_strain(path, res):
     """The paper's Figures 3.3-3.5 and 3.9-3.11 (right): swelling strain against log time, with
-    the free swelling of the swelling phase."""
+    the free swelling of the swelling phase; for a 3D box the z strain too, and below, the volume
+    change with the free swelling's (1 + eps)^3 - 1."""
     plt = _plt()
     t = np.array(res["times_days"])
-    fig, ax = plt.subplots(figsize=(7, 4.5))
+    box = "swelling_strain_volume" in res
+    if box:
+        fig, (ax, axv) = plt.subplots(2, 1, figsize=(7, 7.2), sharex=True, gridspec_kw={"height_ratios": [3, 2]})
+    else:
+        fig, ax = plt.subplots(figsize=(7, 4.5))
     ax.semilogx(t, np.array(res["swelling_strain_x"]) * 1e6, "o-", ms=3, label="specimen, x")
     ax.semilogx(t, np.array(res["swelling_strain_y"]) * 1e6, "s-", ms=3, label="specimen, y")
     if "swelling_strain_z" in res:
@@ -463,11 +468,32 @@ def plot_strain(path, res):
     loaded = _structures(res)
     # under platens, an applied stress or bars the specimen's strain is the swelling's and the load's
     ylabel = "strain of the specimen (swelling and load) [1e-6]" if loaded else "swelling strain [1e-6]"
-    ax.set(xlabel="time [day]", ylabel=ylabel, title=_title(res))
+    ax.set(xlabel=None if box else "time [day]", ylabel=ylabel, title=_title(res))
     ax.grid(True, which="both", lw=0.3)
+    along = _max(res["swelling_strain_x"], res["swelling_strain_y"], res.get("swelling_strain_z"))
     if len(t):
-        _free_swelling_curve(ax, res, t[-1], _max(res["swelling_strain_x"], res["swelling_strain_y"]))
+        _free_swelling_curve(ax, res, t[-1], along if box else _max(res["swelling_strain_x"], res["swelling_strain_y"]))
+    if box:
+        _volume_panel(axv, res, t, along)
     _save(fig, path)
+
+
+def _volume_panel(ax, res, t, along):
+    """A 3D box's volume change against log time [1e-6], with the free swelling's volume change
+    (1 + eps)^3 - 1 where the free swelling shares the strains' axis (not under ASR-coarse's gel
+    pockets, whose free swelling the specimen's is a fraction of: _free_swelling_curve)."""
+    ax.semilogx(t, np.array(res["swelling_strain_volume"]) * 1e6, "D-", ms=3, color="tab:purple", label="specimen, volume change $\\Delta V / V$")
+    if len(t) and swelling_kinds(res):
+        cfg = res.get("config") or {}
+        t0 = (res.get("solver_settings") or {}).get("tStart", cfg.get("t_start_days", 1.0))
+        tt = np.geomspace(t0, t[-1], 200)
+        free = run_free_swelling(res, tt, t0)
+        if not along < 0.2 * free.max() * 1e6:
+            ax.semilogx(tt, ((1 + free) ** 3 - 1) * 1e6, "--", color="k", lw=1,
+                        label="free swelling of the swelling phase, its volume change $(1 + \\varepsilon)^3 - 1$")
+    ax.set(xlabel="time [day]", ylabel="volume change [1e-6]")
+    ax.grid(True, which="both", lw=0.3)
+    ax.legend(fontsize=7, loc="upper left")
 
 
 def _structures(res):
@@ -570,18 +596,54 @@ def plot_curves(out, res):
         plot_structure_stress(os.path.join(out, "structure_stress.png"), res)
 
 
+def _fill_aggregates(ax, polygons_mm):
+    """The aggregates of a crack map, (k, 2) polygons [mm] filled grey: a section's in 2D, the
+    polyhedra's cuts by a section plane in 3D."""
+    for p in polygons_mm:
+        ax.fill(p[:, 0], p[:, 1], color="0.85", lw=0.5, ec="0.5")
+
+
+def _add_cracks(ax, lines_by_kind, labels):
+    """The broken contacts of a crack map: per kind name its lines ([(x, y) ...] in mm, each a
+    facet's trace) in the kind's colour (COLORS), labelled labels[kind] in the legend."""
+    from matplotlib.collections import LineCollection
+    for kname, segs in lines_by_kind.items():
+        if segs:
+            # a structure's broken contact drawn thicker: one bond facet against hundreds of mortar ones
+            ax.add_collection(LineCollection(segs, colors=COLORS[kname], linewidths=1.2 if kname in KIND_NAMES else 2.5,
+                                             label=labels[kname]))
+
+
+def _frame(ax, width_mm, height_mm, xlabel, ylabel, title):
+    ax.set_xlim(0, width_mm)
+    ax.set_ylim(0, height_mm)
+    ax.set_aspect("equal")
+    ax.set(xlabel=xlabel, ylabel=ylabel, title=title)
+
+
+def _map_kinds(res):
+    """The kinds a crack map draws, by name: the run's (kinds_of) or, for a results dict without
+    per-kind series, the paper's three."""
+    return kinds_of(res) if res.get("per_kind") else list(KIND_NAMES)
+
+
+def _map_title(res, step):
+    t = res["times_days"][step] if res["times_days"] else float("nan")
+    return f"crack map: {LABEL.get(res['scenario'], res['scenario'])}, {res['behaviour']}, t = {t:.4g} d"
+
+
 def plot_crack_map(out, res, assembly, broken_contacts, step=-1, name="crack_map.png", segments=None):
     """Broken contacts drawn as their Laguerre facets, coloured by kind (COLORS), over the
     mesostructure, with the bars and platens in their kinds' colours; `step`: the index into
     times_days of the time the map shows (-1: the last); segments: {(id1, id2): (x1, y1, x2, y2)
     [m]} of contacts that are not the assembly's (a broken BOND contact; load_breaks'
-    'segment_m'), drawn across their normal."""
+    'segment_m'), drawn across their normal. A 3D box's map is plot_crack_sections' (its rows
+    returned; None for a 2D section)."""
+    if getattr(assembly, "dim", 2) == 3:
+        return plot_crack_sections(out, res, assembly, broken_contacts, step=step, name=name)
     plt = _plt()
-    from matplotlib.collections import LineCollection
     fig, ax = plt.subplots(figsize=(7, 7 * assembly.height_m / assembly.width_m))
-    for poly in assembly.polygons:
-        p = np.asarray(poly) * 1e3
-        ax.fill(p[:, 0], p[:, 1], color="0.85", lw=0.5, ec="0.5")
+    _fill_aggregates(ax, [np.asarray(poly) * 1e3 for poly in assembly.polygons])
     index = {(int(i), int(j)): c for c, (i, j) in enumerate(assembly.contacts)}
     bar = res.get("rebar")
     if bar and res.get("rebar_stress_mean_Pa"):  # the bars (swelldem.dem.rebar), with their stress at that time
@@ -598,9 +660,10 @@ def plot_crack_map(out, res, assembly, broken_contacts, step=-1, name="crack_map
                 xy = ([edge, edge], [0, h]) if axis == "x" else ([0, w], [edge, edge])
                 ax.plot(*xy, "-", color=COLORS["PLATEN"], lw=4, solid_capstyle="butt", clip_on=False,
                         label=f"platens on the {axis} sides ({cfg[f'boundary_{axis}']})" if n == 0 else None)
-    for kname in kinds_of(res) if res.get("per_kind") else KIND_NAMES:
+    lines = {}
+    for kname in _map_kinds(res):
         k = {v: kk for kk, v in KIND_NAME_OF_ID.items()}[kname]
-        segs = []
+        segs = lines.setdefault(kname, [])
         for i, j, kind in broken_contacts:
             pair = (min(i, j), max(i, j))
             if kind != k:
@@ -610,18 +673,168 @@ def plot_crack_map(out, res, assembly, broken_contacts, step=-1, name="crack_map
             if s is not None and np.all(np.isfinite(s)):
                 s = np.asarray(s) * 1e3
                 segs.append([(s[0], s[1]), (s[2], s[3])])
-        if segs:
-            # a structure's broken contact drawn thicker: one bond facet against hundreds of mortar ones
-            ax.add_collection(LineCollection(segs, colors=COLORS[kname], linewidths=1.2 if kname in KIND_NAMES else 2.5,
-                                             label=f"{kname} ({len(segs)} broken)"))
-    ax.set_xlim(0, assembly.width_m * 1e3)
-    ax.set_ylim(0, assembly.height_m * 1e3)
-    ax.set_aspect("equal")
-    t = res["times_days"][step] if res["times_days"] else float("nan")
-    ax.set(xlabel="x [mm]", ylabel="y [mm]",
-           title=f"crack map: {LABEL.get(res['scenario'], res['scenario'])}, {res['behaviour']}, t = {t:.4g} d")
+    _add_cracks(ax, lines, {kname: f"{kname} ({len(segs)} broken)" for kname, segs in lines.items()})
+    _frame(ax, assembly.width_m * 1e3, assembly.height_m * 1e3, "x [mm]", "y [mm]", _map_title(res, step))
     if ax.get_legend_handles_labels()[0]:
         ax.legend(loc="upper right", fontsize=8)
+    _save(fig, os.path.join(out, name), dpi=130)
+
+
+#: The file of a 3D box's crack maps' counts, one row per map, section and kind (crack_section_rows).
+CRACK_SECTIONS_FILE = "crack_sections.csv"
+AXIS_NAMES = ("x", "y", "z")
+
+
+def facet_trace(polygon, axis, level):
+    """The chord that the plane coordinate[axis] = level cuts from a planar convex polygon ((k, 3)
+    vertices in loop order) as two (3,) points; None when the plane misses it. A polygon lying in
+    the plane (every vertex within 1e-9 of its own size of it) has no chord: its closed outline,
+    k + 1 points, is returned instead."""
+    v = np.asarray(polygon, dtype=float)
+    d = v[:, axis] - level
+    if np.all(np.abs(d) <= 1e-9 * max(float(np.ptp(v, axis=0).max()), 1e-300)):
+        return np.vstack([v, v[:1]])
+    pts = []
+    for k in range(len(v)):
+        a, b = k, (k + 1) % len(v)
+        if d[a] == 0.0:
+            pts.append(v[a])
+        elif d[a] * d[b] < 0.0:
+            pts.append(v[a] + d[a] / (d[a] - d[b]) * (v[b] - v[a]))
+    if len(pts) < 2:
+        return None
+    pts = np.asarray(pts)
+    # a vertex on the plane between two edges that cross it gives more than two points, all on one line
+    far = np.linalg.norm(pts[:, None] - pts[None], axis=2)
+    i, j = np.unravel_index(int(np.argmax(far)), far.shape)
+    return np.array([pts[i], pts[j]])
+
+
+def crack_sections(assembly, broken_contacts, kinds):
+    """The three mid-plane sections of a 3D box's crack map (swelldem.meso.plot3d.SECTIONS' order:
+    z = D/2, y = H/2, x = W/2), each a dict: 'axis' (its normal, 'x' | 'y' | 'z'), 'normal', 'hor',
+    'ver' (axis indices), 'level_m', 'slab_m' (the mean sphere radius), 'aggregates': the
+    polyhedra's cuts by the plane as (k, 2) polygons in (hor, ver) [mm], and per kind name of
+    `kinds`: 'lines' (each broken contact of the slab as its facet's trace at its centroid's level,
+    in (hor, ver) [mm]), 'in_slab' (the broken contacts whose facet centroid lies within slab_m of
+    the plane) and 'in_box' (every broken contact of the kind). broken_contacts: (id1, id2, kindId)."""
+    from .meso.plot3d import SECTIONS, section_polygon
+    index = {(int(i), int(j)): c for c, (i, j) in enumerate(assembly.contacts)}
+    ids = {name: kk for kk, name in KIND_NAME_OF_ID.items()}
+    by_kind = {name: [] for name in kinds}
+    in_box = {name: 0 for name in kinds}
+    for i, j, kind in broken_contacts:
+        name = KIND_NAME_OF_ID.get(int(kind))
+        if name not in by_kind:
+            continue
+        in_box[name] += 1
+        c = index.get((min(int(i), int(j)), max(int(i), int(j)))) if int(kind) == ids.get(name) else None
+        if c is not None:
+            by_kind[name].append(c)
+    size = np.asarray(assembly.specimen_size_m, dtype=float)
+    slab = float(np.mean(assembly.r))
+    centroid = np.asarray(assembly.facet_centroid_m)
+    sections = []
+    for normal, hor, ver in SECTIONS:
+        level = float(size[normal] / 2)
+        sec = {"axis": AXIS_NAMES[normal], "normal": normal, "hor": hor, "ver": ver, "level_m": level, "slab_m": slab,
+               "aggregates": [], "lines": {}, "in_slab": {}, "in_box": dict(in_box)}
+        for v in assembly.polyhedra:
+            v = np.asarray(v)
+            if v[:, normal].min() < level < v[:, normal].max():
+                poly = section_polygon(v, normal, level)
+                if poly is not None:
+                    sec["aggregates"].append(poly[:, [hor, ver]] * 1e3)
+        for name, cs in by_kind.items():
+            near = [c for c in cs if abs(centroid[c, normal] - level) <= slab]
+            lines = []
+            for c in near:
+                trace = facet_trace(assembly.facet_polygons[c], normal, centroid[c, normal])
+                if trace is not None:
+                    lines.append(trace[:, [hor, ver]] * 1e3)
+            sec["lines"][name], sec["in_slab"][name] = lines, len(near)
+        sections.append(sec)
+    return sections
+
+
+def crack_section_rows(sections, name, t_days):
+    """The rows of crack_sections.csv of one map (file `name`, time t_days [day]): per section and
+    kind the broken contacts in the slab and in the whole box."""
+    return [{"map": name, "t_days": t_days, "section": f"{s['axis']} = {s['level_m'] * 1e3:g} mm",
+             "slab_half_width_mm": s["slab_m"] * 1e3, "kind": kind, "broken_in_slab": s["in_slab"][kind],
+             "broken_in_box": s["in_box"][kind]} for s in sections for kind in s["in_slab"]]
+
+
+def write_crack_section_rows(out, rows):
+    """crack_sections.csv in `out` from crack_section_rows' rows (of every map drawn)."""
+    with open(os.path.join(out, CRACK_SECTIONS_FILE), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=["map", "t_days", "section", "slab_half_width_mm", "kind", "broken_in_slab", "broken_in_box"])
+        w.writeheader()
+        w.writerows(rows)
+
+
+def plot_crack_sections(out, res, assembly, broken_contacts, step=-1, name="crack_map.png"):
+    """A 3D box's crack map: its three mid-plane sections side by side (crack_sections), each with
+    the aggregates' cuts grey and the broken contacts of its slab as their facets' traces, coloured
+    by kind as a 2D crack map; the legends count each kind's broken contacts in the slab and in the
+    box. Returns the map's crack_section_rows."""
+    plt = _plt()
+    from matplotlib.lines import Line2D
+    sections = crack_sections(assembly, broken_contacts, _map_kinds(res))
+    size = np.asarray(assembly.specimen_size_m) * 1e3
+    widths = [size[s["hor"]] / size[s["ver"]] for s in sections]  # panels of one height, each its section's aspect
+    fig, axes = plt.subplots(1, 3, figsize=(15, 6.2), gridspec_kw={"width_ratios": widths})
+    for ax, sec in zip(axes, sections):
+        _fill_aggregates(ax, sec["aggregates"])
+        labels = {k: f"{k}: {sec['in_slab'][k]} in the slab, {sec['in_box'][k]} in the box" for k in sec["lines"]}
+        _add_cracks(ax, sec["lines"], labels)
+        h, v = AXIS_NAMES[sec["hor"]], AXIS_NAMES[sec["ver"]]
+        _frame(ax, size[sec["hor"]], size[sec["ver"]], f"{h} [mm]", f"{v} [mm]",
+               f"section {sec['axis']} = {sec['level_m'] * 1e3:g} mm\n(slab {sec['axis']} = "
+               f"{(sec['level_m'] - sec['slab_m']) * 1e3:.2f}-{(sec['level_m'] + sec['slab_m']) * 1e3:.2f} mm, "
+               f"{len(sec['aggregates'])} aggregate{'' if len(sec['aggregates']) == 1 else 's'} cut)")
+        ax.title.set_fontsize(9)
+        # every kind broken somewhere in the box, the kinds none of whose cracks reach this slab too
+        handles = [Line2D([], [], color=COLORS[k], label=labels[k]) for k in sec["lines"] if sec["in_box"][k]]
+        if handles:
+            ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.12), fontsize=7.5, title="broken contacts",
+                      title_fontsize=7.5)
+    t = res["times_days"][step] if res["times_days"] else float("nan")
+    fig.suptitle(f"{_map_title(res, step)}; {' x '.join(f'{v:g}' for v in size)} mm box, mid-plane sections\n"
+                 f"drawn: the broken contacts whose facet centroid lies within the mean sphere radius "
+                 f"({sections[0]['slab_m'] * 1e3:.3g} mm) of the plane, each as its facet's trace at its centroid's level; "
+                 "aggregates cut by the plane grey", fontsize=9)
+    _save(fig, os.path.join(out, name), dpi=130)
+    return crack_section_rows(sections, name, t)
+
+
+def plot_crack_view_3d(out, res, assembly, broken_contacts, step=-1, name="crack_map_3d_view.png"):
+    """A 3D box's broken contacts as points at their facet centroids in a 3D view, coloured by kind
+    (COLORS), with the box's edges; the legend counts them per kind. Named so that no
+    crack_map_<day>d.png (a map at day 3 is crack_map_3d.png) can take its name."""
+    plt = _plt()
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection
+    index = {(int(i), int(j)): c for c, (i, j) in enumerate(assembly.contacts)}
+    centroid = np.asarray(assembly.facet_centroid_m) * 1e3
+    fig = plt.figure(figsize=(8, 7.5))
+    ax = fig.add_subplot(projection="3d")
+    ids = {name: kk for kk, name in KIND_NAME_OF_ID.items()}
+    for kname in _map_kinds(res):
+        cs = [index.get((min(i, j), max(i, j))) for i, j, kind in broken_contacts if kind == ids[kname]]
+        cs = [c for c in cs if c is not None]
+        if cs:
+            p = centroid[cs]
+            ax.scatter(p[:, 0], p[:, 1], p[:, 2], s=4, color=COLORS[kname], depthshade=True, label=f"{kname} ({len(cs)} broken)")
+    W, H, D = np.asarray(assembly.specimen_size_m) * 1e3
+    corners = np.array([[i * W, j * H, k * D] for i in (0, 1) for j in (0, 1) for k in (0, 1)])
+    edges = [(p, q) for p in range(8) for q in range(p + 1, 8) if bin(p ^ q).count("1") == 1]
+    ax.add_collection3d(Line3DCollection([corners[[p, q]] for p, q in edges], colors="k", linewidths=0.8))
+    ax.set(xlim=(0, W), ylim=(0, H), zlim=(0, D), xlabel="x [mm]", ylabel="y [mm]", zlabel="z [mm]")
+    ax.set_box_aspect((W, H, D))
+    ax.view_init(elev=22, azim=-58)
+    ax.set_title(f"{_map_title(res, step)}\nbroken contacts at their facet centroids (paler: farther), {W:g} x {H:g} x {D:g} mm box", fontsize=9)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(loc="upper left", fontsize=8, markerscale=3)
     _save(fig, os.path.join(out, name), dpi=130)
 
 
@@ -667,9 +880,10 @@ def crack_map_days(res):
     return [float(f"{d:.4g}") for d in marks if t and t[0] <= d < t[-1]]
 
 
-def plot_crack_maps(out, res, assembly, breaks, days):
+def plot_crack_maps(out, res, assembly, breaks, days, rows=None):
     """crack_map_<day>d.png in `out` for each time in `days` [day]: the contacts broken by the last
-    step at or before it (from load_breaks). Returns the file names."""
+    step at or before it (from load_breaks). Returns the file names; a 3D box's maps add their
+    crack_section_rows to the list `rows` when given."""
     times = np.asarray(res["times_days"], dtype=float)
     segments = break_segments(breaks)
     names = []
@@ -678,21 +892,26 @@ def plot_crack_maps(out, res, assembly, breaks, days):
         if step < 0:
             continue
         names.append(f"crack_map_{day:g}d.png")
-        plot_crack_map(out, res, assembly, broken_at(breaks, step), step=step, name=names[-1], segments=segments)
+        drawn = plot_crack_map(out, res, assembly, broken_at(breaks, step), step=step, name=names[-1], segments=segments)
+        if rows is not None and drawn:
+            rows.extend(drawn)
     return names
 
 
 def write_all(out, res, assembly, broken_contacts):
     """Tables, curves, the crack map at the end and, with the recorder's contact_breaks.npz, at
-    crack_map_days(res); broken_contacts: (id1, id2, kindId) of the broken contacts at the end."""
+    crack_map_days(res); broken_contacts: (id1, id2, kindId) of the broken contacts at the end. A
+    3D box's maps are mid-plane sections (plot_crack_sections), with crack_map_3d_view.png (the broken
+    contacts in 3D) and crack_sections.csv (the sections' counts)."""
     write_tables(out, res)
     plot_curves(out, res)
-    if getattr(assembly, "dim", 2) == 3:  # the crack maps draw a section's polygons
-        return
     breaks = load_breaks(out)
-    plot_crack_map(out, res, assembly, broken_contacts, segments=break_segments(breaks))
+    rows = plot_crack_map(out, res, assembly, broken_contacts, segments=break_segments(breaks))
     if breaks is not None and res["damage"]:
-        plot_crack_maps(out, res, assembly, breaks, crack_map_days(res))
+        plot_crack_maps(out, res, assembly, breaks, crack_map_days(res), rows=rows)
+    if getattr(assembly, "dim", 2) == 3:
+        plot_crack_view_3d(out, res, assembly, broken_contacts)
+        write_crack_section_rows(out, rows)
 
 
 # ---- several runs on one figure (paper Figures 3.3-3.14: elastic / viscoelastic, damage / none)

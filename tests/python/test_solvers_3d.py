@@ -174,6 +174,7 @@ def _swelling_test(tmp_path, *args):
 
 def test_the_swelling_test_of_a_3d_box_records_x_y_z_and_the_volume(tmp_path):
     import csv
+    import glob
     import json
     p = _swelling_test(tmp_path, "--dim", "3", "--size-mm", "10", "10", "10", "--solver", "adr", "--aggregate-area-fraction", "0",
                        "--behaviour", "elastic", "--no-damage", "--steps-per-decade", "1")
@@ -189,10 +190,14 @@ def test_the_swelling_test_of_a_3d_box_records_x_y_z_and_the_volume(tmp_path):
     with open(tmp_path / "run" / "curves.csv") as f:
         header = next(csv.reader(f))
     assert "swelling_strain_z [-]" in header and "swelling_strain_volume [-]" in header
-    assert not (tmp_path / "run" / "crack_map.png").exists()
+    # without damage: the section maps and the 3D view drawn with nothing broken, no intermediate maps
+    assert (tmp_path / "run" / "crack_map.png").exists() and (tmp_path / "run" / "crack_map_3d_view.png").exists()
+    assert not glob.glob(str(tmp_path / "run" / "crack_map_*d.png"))
+    with open(tmp_path / "run" / "crack_sections.csv") as f:
+        counts = [(r["section"], r["broken_in_slab"], r["broken_in_box"]) for r in csv.DictReader(f)]
+    assert sorted({c[0] for c in counts}) == ["x = 5 mm", "y = 5 mm", "z = 5 mm"] and {c[1:] for c in counts} == {("0", "0")}
     assert "z " in p.stdout and "3D" in open(tmp_path / "run" / "table.md").read()
     # ParaView: the spheres as points with their arrays as point data, the contacts with both shears
-    import glob
     from conftest import read_vtp
     last = sorted(glob.glob(str(tmp_path / "run" / "vtk" / "particles_*.vtp")))[-1]
     poly, _, pts, field = read_vtp(last)
