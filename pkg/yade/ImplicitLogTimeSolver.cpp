@@ -239,7 +239,7 @@ void ImplicitLogTimeSolver::choosePins()
 	// rotation; 3D: three and three), which make K singular. They are removed by holding one body
 	// near the centre in every translation and, in 2D, a second, far from it, across the line
 	// joining them: this moves the specimen as a rigid body only, so no force and no strain changes
-	// (tests/python/test_implicit_solver.py). In 3D the centre body's three rotations are held
+	// (tests/python/test_implicit_solver.py). In 3D the centre body's rotations are held
 	// instead of other bodies' positions: a rigid rotation turns every body, so this removes the
 	// three rotation modes too, and it turns the specimen only by that body's own rotation, not by
 	// the specimen's strain across a line (YADE's 3D shear is not exactly objective: a free swelling
@@ -249,11 +249,26 @@ void ImplicitLogTimeSolver::choosePins()
 	const auto&    bodies = scene->bodies->body;
 	const bool     threeD = nDim == 3;
 	const int      nd     = threeD ? 3 : 2;
-	const unsigned moves  = threeD ? State::DOF_X | State::DOF_Y | State::DOF_Z : State::DOF_X | State::DOF_Y;
-	for (const auto& b : bodies)
-		if (b && (b->state->blockedDOFs & moves)) return;
+	const auto&    L      = scene->interactions->linIntrs;
+	// 3D: an axis is held when a held body pushes along it through a contact (a platen's normal; its
+	// shear is next to nothing, so z platens leave x and y free), and a rotation about an axis when
+	// some other axis is held; the centre sphere is held in what is left.
+	bool held[3] = { false, false, false };
+	if (threeD) {
+		for (size_t i = 0; i < scene->interactions->currSize; ++i) {
+			const Interaction* I = L[i].get();
+			if (!I->isReal()) continue;
+			const Vector3r& n = static_cast<const ScGeom*>(I->geom.get())->normal;
+			for (int id : { I->id1, I->id2 })
+				for (int d = 0; d < 3; ++d)
+					if ((bodies[id]->state->blockedDOFs & kAxisDOF[d]) && std::abs(n[d]) > 0.5) held[d] = true;
+		}
+		if (held[0] && held[1] && held[2]) return;
+	} else {
+		for (const auto& b : bodies)
+			if (b && (b->state->blockedDOFs & (State::DOF_X | State::DOF_Y))) return;
+	}
 	std::vector<int> degree(bodies.size(), 0);
-	const auto&      L = scene->interactions->linIntrs;
 	for (size_t i = 0; i < scene->interactions->currSize; ++i)
 		if (L[i]->isReal()) ++degree[L[i]->id1], ++degree[L[i]->id2];
 	auto     pos = [&](int id) { return bodies[id]->state->se3.position; };
@@ -271,7 +286,11 @@ void ImplicitLogTimeSolver::choosePins()
 			if (d < best) best = d, a = b->id;
 		}
 	if (threeD) {
-		pinnedDofs = { 6 * a, 6 * a + 1, 6 * a + 2, 6 * a + 3, 6 * a + 4, 6 * a + 5 };
+		pinnedDofs.clear();
+		for (int d = 0; d < 3; ++d)
+			if (!held[d]) pinnedDofs.push_back(6 * a + d);
+		for (int k = 0; k < 3; ++k)
+			if (!held[(k + 1) % 3] && !held[(k + 2) % 3]) pinnedDofs.push_back(6 * a + 3 + k);
 		return;
 	}
 	for (const auto& b : bodies)
