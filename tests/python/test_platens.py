@@ -164,7 +164,7 @@ def test_a_bad_spring_list_is_refused_with_the_list_and_the_bad_entry(yade_run):
     r = yade_run(r"""
 s = yade.wrapper.AdrLogTimeIntegrator()
 out = {}
-for attr, value in (("springAxes", [0, 2]), ("springStiffness", [1e6, -1.0]), ("springBodies", [-3])):
+for attr, value in (("springAxes", [0, 3]), ("springStiffness", [1e6, -1.0]), ("springBodies", [-3])):
     try:
         setattr(s, attr, value)
         out[attr] = "accepted"
@@ -173,8 +173,8 @@ for attr, value in (("springAxes", [0, 2]), ("springStiffness", [1e6, -1.0]), ("
 out["kept"] = [list(s.springAxes), list(s.springStiffness), list(s.springBodies)]
 dump(out)
 """)
-    assert r["springAxes"].startswith("AdrLogTimeIntegrator.springAxes = [0, 2] refused, the old value [] kept")
-    assert "springAxes[1] = 2 is out of range; allowed: 0 (x) or 1 (y)" in r["springAxes"]
+    assert r["springAxes"].startswith("AdrLogTimeIntegrator.springAxes = [0, 3] refused, the old value [] kept")
+    assert "springAxes[1] = 3 is out of range; allowed: 0 (x), 1 (y) or 2 (z, 3D)" in r["springAxes"]
     assert "springStiffness[1] [N/m] = -1 is out of range" in r["springStiffness"]
     assert "springBodies[0] = -3 is out of range" in r["springBodies"]
     assert r["kept"] == [[], [], []]
