@@ -7,7 +7,7 @@ stress, beside the trend Multon and Toutlemonde measured on loaded cylinders.
         [--size-mm 12 12 24] [--steps-per-decade 4] [--seed 1] [--solver adr|implicit] (default adr)
 
 Each stress S runs scripts/swelling_test.py --dim 3 --scenario asr-fine --behaviour viscoelastic
-(damage on) --boundary-z stress:-S twice: reactive (the run's eps_inf) and non-reactive (eps_inf
+(damage on unless --no-damage) --boundary-z stress:-S twice: reactive (the run's eps_inf) and non-reactive (eps_inf
 0, the same specimen under the same load: its elastic and creep strains). As in the laboratory,
 where a loaded companion of non-reactive concrete gives the creep to subtract, the ASR expansion
 is the reactive strain minus the non-reactive one, per direction: along the load (z), across it
@@ -37,6 +37,9 @@ ap.add_argument("--steps-per-decade", type=float, default=4.0, help="physical st
 ap.add_argument("--aggregate-area-fraction", type=float, default=0.2,
                 help="aggregate volume fraction (below the default 0.35 so that a prism under 25 mm places its grains) [-]")
 ap.add_argument("--seed", type=int, default=1, help="mesostructure seed (the same specimen in every run)")
+ap.add_argument("--no-damage", action="store_true",
+                help="contacts never break: the model is then linear, and the ASR expansion under any load is the free one "
+                     "(superposition): the load's effect is the cracking's")
 ap.add_argument("--out", default="out/loaded", help="output folder")
 # The ADR by default: under a platen load in 3D a face's corner sphere held by the platen and one
 # contact slides across the lubricated platen until its contact lines up, a mechanism the implicit
@@ -51,7 +54,7 @@ def run_name(stress, reactive):
 
 
 def common(stress, reactive):
-    return dict(dim=3, scenario="asr-fine", behaviour="viscoelastic", damage=True, size_mm=tuple(args.size_mm), seed=args.seed,
+    return dict(dim=3, scenario="asr-fine", behaviour="viscoelastic", damage=not args.no_damage, size_mm=tuple(args.size_mm), seed=args.seed,
                 solver=args.solver, steps_per_decade=args.steps_per_decade, aggregate_area_fraction=args.aggregate_area_fraction,
                 boundary_z=f"stress:{-stress * 1e6:g}" if stress > 0 else "free",
                 **({} if reactive else {"eps_inf": 0.0}))
@@ -79,7 +82,14 @@ for (s, reactive), test in runs.items():
     done = False
     if os.path.exists(path):
         with open(path) as f:
-            done = json.load(f).get("status") == "finished"
+            old = json.load(f)
+        want = common(s, reactive)
+        differ = {k: (old.get("config", {}).get(k), v) for k, v in want.items()
+                  if k in old.get("config", {}) and old["config"][k] != (list(v) if isinstance(v, tuple) else v)}
+        if differ:
+            sys.exit(f"loaded_expansion.py: {test.out} holds a run of other settings {differ} (found, asked); "
+                     "use another --out or delete it")
+        done = old.get("status") == "finished"
     if not done:
         os.makedirs(test.out, exist_ok=True)
         cmd = [os.path.join(REPO, "scripts", "yade-swelldem"), "-j", "1", "-n", "-x", os.path.join(REPO, "scripts", "swelling_test.py"),
@@ -90,6 +100,8 @@ for (s, reactive), test in runs.items():
             cmd += ["--boundary-z", f"stress:{-s * 1e6:g}"]
         if not reactive:
             cmd += ["--eps-inf", "0"]
+        if args.no_damage:
+            cmd += ["--no-damage"]
         t0 = time.time()
         with open(os.path.join(test.out, "log.txt"), "w") as log:
             rc = subprocess.call(cmd, stdout=log, stderr=subprocess.STDOUT, env=env)
@@ -127,7 +139,7 @@ with open(base + ".csv", "w", newline="") as f:
             w.writerow([f"{s:g}", f"{t[i]:.6g}", f"{z[i] * 1e6:.3f}", f"{xy[i] * 1e6:.3f}", f"{v[i] * 1e6:.3f}", f"{tz[i] * 1e6:.3f}",
                         f"{txy[i] * 1e6:.3f}"])
 with open(base + ".md", "w") as f:
-    f.write(f"ASR-fine, viscoelastic, damage on, 3D prism {' x '.join(f'{v:g}' for v in args.size_mm)} mm (load along the "
+    f.write(f"ASR-fine, viscoelastic, damage {'off' if args.no_damage else 'on'}, 3D prism {' x '.join(f'{v:g}' for v in args.size_mm)} mm (load along the "
             f"last side, z), seed {args.seed}, {r0['n_particles']} spheres, aggregate fraction {args.aggregate_area_fraction:g}, "
             f"{args.steps_per_decade:g} steps a decade, solver {args.solver}. ASR expansion = reactive strain minus the strain of "
             f"the same specimen without swelling under the same load (eps_inf 0: its elastic and creep strains), at "
@@ -168,7 +180,7 @@ axs.set_title("Multon & Toutlemonde (2006): along the load reduced, moved across
               fontsize=9)
 axs.grid(alpha=0.3)
 axs.legend(fontsize=8)
-fig.suptitle(f"ASR-fine, viscoelastic, damage on, 3D prism {' x '.join(f'{v:g}' for v in args.size_mm)} mm, seed {args.seed}, "
+fig.suptitle(f"ASR-fine, viscoelastic, damage {'off' if args.no_damage else 'on'}, 3D prism {' x '.join(f'{v:g}' for v in args.size_mm)} mm, seed {args.seed}, "
              f"{args.solver}", fontsize=10)
 fig.tight_layout()
 fig.savefig(base + ".png", dpi=120)
