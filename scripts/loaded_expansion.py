@@ -60,6 +60,20 @@ def common(stress, reactive):
                 **({} if reactive else {"eps_inf": 0.0}))
 
 
+def options_of(settings):
+    """swelling_test.py's options for the SwellingTest fields `settings` (common()): the run made is
+    the test validated and compared with a folder's results.json."""
+    out = []
+    for name, value in settings.items():
+        if name == "damage":
+            out += [] if value else ["--no-damage"]
+        elif isinstance(value, tuple):
+            out += [f"--{name.replace('_', '-')}", *[f"{v:g}" for v in value]]
+        else:
+            out += [f"--{name.replace('_', '-')}", f"{value:g}" if isinstance(value, float) else str(value)]
+    return out
+
+
 with options.refuse_bad("loaded_expansion.py"):
     options.output_folder("out", args.out)
     for s in args.stresses_mpa:
@@ -93,15 +107,7 @@ for (s, reactive), test in runs.items():
     if not done:
         os.makedirs(test.out, exist_ok=True)
         cmd = [os.path.join(REPO, "scripts", "yade-swelldem"), "-j", "1", "-n", "-x", os.path.join(REPO, "scripts", "swelling_test.py"),
-               "--dim", "3", "--scenario", "asr-fine", "--behaviour", "viscoelastic", "--size-mm", *[f"{v:g}" for v in args.size_mm],
-               "--seed", str(args.seed), "--solver", args.solver, "--steps-per-decade", f"{args.steps_per_decade:g}",
-               "--aggregate-area-fraction", f"{args.aggregate_area_fraction:g}", "--out", test.out]
-        if s > 0:
-            cmd += ["--boundary-z", f"stress:{-s * 1e6:g}"]
-        if not reactive:
-            cmd += ["--eps-inf", "0"]
-        if args.no_damage:
-            cmd += ["--no-damage"]
+               *options_of(common(s, reactive)), "--out", test.out]
         t0 = time.time()
         with open(os.path.join(test.out, "log.txt"), "w") as log:
             rc = subprocess.call(cmd, stdout=log, stderr=subprocess.STDOUT, env=env)
