@@ -8,7 +8,7 @@
       [--temperature-c T | --temperature-csv FILE] [--boundary-x free|fixed|stress:S|spring:K] \
       [--boundary-y ...] [--boundary-z ... (3D)] [--rebar-ratio R] [--save-state] --out DIR
   scripts/yade-swelldem -n -x scripts/swelling_test.py --resume DIR
-  scripts/yade-swelldem -n -x scripts/swelling_test.py --dim 3 --size-mm W H D --solver adr ... --out DIR
+  scripts/yade-swelldem -n -x scripts/swelling_test.py --dim 3 --size-mm W H D [--solver implicit|adr] [--boundary-z ...] ... --out DIR
 
 writes DIR/results.json, DIR/table.md, DIR/table.csv, DIR/*.png (swelling strain, unbalanced force,
 force quantiles, crack map) and DIR/vtk/ (ParaView: particles and contacts .vtp files of the last step,

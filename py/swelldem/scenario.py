@@ -65,8 +65,8 @@ class SwellingTest:
     damage: bool = _field(True, "brittle contacts with the paper's Table 3.5 strengths (--no-damage: never break)",
                           sets="ContactKind.damage")
     size_mm: tuple = _field((30.0, 30.0), "specimen width and height, and its depth when dim is 3 (W H D)", unit="mm")
-    dim: int = _field(2, "specimen: 2, a section of discs; 3, a box of spheres with polyhedral aggregates (solver adr; "
-                         "free, without platens, restraint or bars)")
+    dim: int = _field(2, "specimen: 2, a section of discs; 3, a box of spheres with polyhedral aggregates (either solver; "
+                         "platens, applied stress and restraint springs on any face pair; not bars or the macro calibration)")
     seed: int = _field(1, "mesostructure seed (integer >= 0)")
     solver: str = _field("implicit", "quasi-static solver: implicit (each step's exact equilibrium by Newton and a sparse Cholesky factor) "
                          "or adr (adaptive dynamic relaxation, the paper's method)", choices=tuple(SOLVERS))
