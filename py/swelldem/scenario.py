@@ -581,7 +581,9 @@ def temperature_record(test, kinds):
 
 
 class Interrupted(Exception):
-    """A stop signal (SIGTERM, Ctrl-C) reached a running swelling test; its results.json says so."""
+    """A stop signal (SIGTERM, Ctrl-C) reached a running swelling test; its results.json says so.
+    `where`: the step it stopped in and how far into it ('' before the solver has started)."""
+    where = ""
 
 
 class RunFailed(RuntimeError):
@@ -753,7 +755,8 @@ def run_or_exit(test, prog, prepared=None, **kw):
     except RunFailed as e:
         sys.exit(f"{prog}: {e.status} ({os.path.join(e.out, 'results.json')})")
     except Interrupted as e:  # results.json says "interrupted: <signal>"; the steps done are kept
-        sys.exit(f"{prog}: interrupted by {e}; results so far in {os.path.join(test.out, 'results.json')}")
+        where = f" {e.where}" if e.where else ""
+        sys.exit(f"{prog}: interrupted by {e}{where}; results so far in {os.path.join(test.out, 'results.json')}")
     except ValueError as e:
         sys.exit(f"{prog}: {e}")
 
@@ -867,6 +870,10 @@ def run(test, prepared=None, extra_times=(), after_step=None, resume=False):
         res["status"] = "finished"
     except Interrupted as e:
         res["status"] = f"interrupted: {e}"
+        if solver.times and 0 < solver.step <= solver.nSteps:
+            e.where = (f"during step {solver.step}/{solver.nSteps} (t = {solver.times[solver.step - 1]:.4g} to "
+                       f"{solver.times[solver.step]:.4g} d), {solver.iterInStep} iterations into it, "
+                       f"{solver.totalIterations} in all")
         res["wall_s"] = time.time() - t0
         report.write_results(test.out, res)
         raise

@@ -7,6 +7,7 @@ import csv
 import json
 import math
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -74,6 +75,9 @@ def interrupted(tmp_path_factory):
     p.send_signal(signal.SIGTERM)
     _, err = p.communicate(timeout=300)
     assert p.returncode == 1, err[-3000:]
+    # the one line says where the run stopped: its step and how far into it
+    assert re.search(r"interrupted by SIGTERM during step (\d+)/18 \(t = [0-9.e+]+ to [0-9.e+]+ d\), \d+ iterations into it, "
+                     r"\d+ in all; results so far in ", err), err[-3000:]
     return out
 
 
