@@ -615,8 +615,9 @@ bool ImplicitLogTimeSolver::needsFactor(bool freshFactor) const
 	// A 3D sliding contact's stiffness across its slip, ks |Fs| / |Fs trial|, falls as its slip grows
 	// within the step; factored at a stiffer value, it makes the move across the slip too short and
 	// Newton converges by 1 - (its value) / (the factored one) an iteration (measured: 0.95 in the
-	// late steps of a 12 mm ISR cube, which stalled at newtonLimit). Within a factor 2 of the
-	// factored value, the rate stays under 1/2.
+	// late steps of a 12 mm ISR cube, which stalled at newtonLimit). Down to half the factored
+	// value that rate stays under 1/2; above it a move overshoots by (its value) / (the factored
+	// one) - 1, which must stay under 1: refactored outside [1/2, 2] x the factored value.
 	if (factoredAcross.size() == S.contacts.size())
 		for (const auto& a : S.across) {
 			const Real was = factoredAcross[size_t(a[0])];
@@ -701,7 +702,8 @@ Eigen::VectorXd ImplicitLogTimeSolver::solveWithCoupling(const Eigen::VectorXd& 
 				if (col.eq[k] >= 0) u[col.eq[k]] += col.u[k];
 		};
 		if (S.nb == 3) {
-			// a section's cracking step has tens of new columns, and a disc's factor solves fast
+			// a section's cracking step has tens of new columns and a disc's factor solves fast:
+			// one solve each, whose results the sections' runs have always had
 			for (size_t j : pending) {
 				Eigen::VectorXd u = Eigen::VectorXd::Zero(S.nEq);
 				columnOf(j, u);
