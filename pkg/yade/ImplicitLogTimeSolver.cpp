@@ -208,7 +208,7 @@ void ImplicitLogTimeSolver::postLoad()
 	core::require(maxMove > 0 && maxMove <= 1, "ImplicitLogTimeSolver.maxMove", maxMove, "0 < maxMove <= 1");
 	core::require(mechanismMove >= 0 && mechanismMove < 1, "ImplicitLogTimeSolver.mechanismMove", mechanismMove, "0 <= mechanismMove < 1");
 	core::require(newtonLimit >= 1, "ImplicitLogTimeSolver.newtonLimit", newtonLimit, ">= 1");
-	core::require(factorLimit >= -1, "ImplicitLogTimeSolver.factorLimit", factorLimit, ">= 0 (0: none), or -1 for the dimension's default");
+	core::require(changingLimit >= -1, "ImplicitLogTimeSolver.changingLimit", changingLimit, ">= 0 (0: none), or -1 for the dimension's default");
 	core::require(maxSlidingExact >= 0, "ImplicitLogTimeSolver.maxSlidingExact", maxSlidingExact, ">= 0");
 	core::require(kinkPasses >= 0, "ImplicitLogTimeSolver.kinkPasses", kinkPasses, ">= 0 (0: never)");
 	core::require(lowRankChanges >= 0, "ImplicitLogTimeSolver.lowRankChanges", lowRankChanges, ">= 0");
@@ -577,7 +577,7 @@ Real ImplicitLogTimeSolver::rotationShiftFactor() const
 	return nDim == 3 ? 1e-5 : 1e-3;
 }
 
-long ImplicitLogTimeSolver::factorLimitOfDimension() const { return factorLimit >= 0 ? factorLimit : (nDim == 3 ? 5 : 0); }
+long ImplicitLogTimeSolver::changingLimitOfDimension() const { return changingLimit >= 0 ? changingLimit : (nDim == 3 ? 5 : 0); }
 
 Real ImplicitLogTimeSolver::rotationShift(Real diagonal) const { return rotationShiftFactor() * std::min(diagonal, Real(sys->rotationScale)); }
 
@@ -1188,13 +1188,13 @@ void ImplicitLogTimeSolver::action()
 	// residual at the positions' round-off is met at once (a step that loads nothing).
 	const bool        moved   = iterInStep - roundStart >= 2;
 	const bool        exact   = (moved && b.ratio <= tolerance) || b.atRoundOff;
-	const bool        stalled = !exact && !fallback && (iterInStep - newtonSince > newtonLimit || factorHandOver) && b.ratio <= stallTolerance;
+	const bool        stalled = !exact && !fallback && (iterInStep - newtonSince > newtonLimit || changingHandOver) && b.ratio <= stallTolerance;
 	const bool        relaxed = fallback && b.ratio <= std::max(tolerance, fallbackTolerance);
 	const StepOutcome out     = settleStep(b, exact || stalled || relaxed);
 	if (stalled && out != StepOutcome::Continue) ++stalledRounds;
 	if (out != StepOutcome::Continue || iterInStep == 1)
-		relaxing = false, newtonSince = iterInStep, newtonSinceFactorizations = factorizations, relaxPhase = 0, lineAlpha = 0, heldMechanisms.clear(),
-		kinkRound = false, factorHandOver = false;
+		relaxing = false, newtonSince = iterInStep, relaxPhase = 0, lineAlpha = 0, heldMechanisms.clear(),
+		kinkRound = false, changingHandOver = false;
 	if (out == StepOutcome::Committed) {
 		fallback = false;
 		syncShearMode(); // before the next step's first pass
@@ -1214,13 +1214,14 @@ void ImplicitLogTimeSolver::action()
 		relaxIteration(b);
 		return;
 	}
-	// A 3D cracking round changes the state of 30 to 100 contacts at every Newton iteration, each of
-	// which then costs a factorization (20 mm cube: 3.6 s, about 70 relaxation iterations): after
-	// factorLimit of them relaxation takes the round over, and settles it within stallTolerance.
-	const long fLimit = factorLimitOfDimension();
-	const bool costly = fLimit > 0 && factorizations - newtonSinceFactorizations >= fLimit;
-	if (!relaxing && (iterInStep - newtonSince > newtonLimit || costly)) {
-		factorHandOver = factorHandOver || costly;
+	// After a 3D cracking round's breaks 30 to 100 contacts change state at every Newton iteration,
+	// and each such iteration refactors and solves the sliding contacts' columns anew (20 mm cube:
+	// about 5 s, some 100 relaxation iterations): a Newton phase still changing contacts after
+	// changingLimit iterations hands the round to relaxation, which settles it within stallTolerance.
+	const long cLimit   = changingLimitOfDimension();
+	const bool changing = cLimit > 0 && activeChanges > 0 && iterInStep - newtonSince > cLimit;
+	if (!relaxing && (iterInStep - newtonSince > newtonLimit || changing)) {
+		changingHandOver = changingHandOver || changing;
 		relaxing  = true;
 		lineAlpha = 0;
 		zeroVelocities(scene);
@@ -1232,9 +1233,8 @@ void ImplicitLogTimeSolver::action()
 			relaxIteration(b);
 			return;
 		}
-		relaxing                  = false;
-		newtonSince               = iterInStep;
-		newtonSinceFactorizations = factorizations;
+		relaxing    = false;
+		newtonSince = iterInStep;
 	}
 	// Backtracking on the residual's 2-norm, for which a Newton move is a descent direction (the
 	// unbalanced ratio, a mean of per-body force norms, is not: measured, it stalls the search on

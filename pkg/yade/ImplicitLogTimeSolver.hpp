@@ -75,16 +75,16 @@ public:
 	X(long, newtonLimit, 20, swelldem_attr::Setting,                                                                                                    \
 	  "Newton iterations without reaching the tolerance after which the step continues by dynamic relaxation (a broken contact's "               \
 	  "open / closed / sliding state that does not settle under Newton) [-]")                                                                       \
-	X(long, factorLimit, -1, swelldem_attr::Setting,                                                                                                    \
-	  "Factorizations of a round's Newton phase after which dynamic relaxation takes the round over, as after newtonLimit iterations, and "   \
-	  "settles it as soon as it is within stallTolerance: a 3D cracking round changes the state of 30 to 100 contacts at every Newton "         \
-	  "iteration, each of which then costs a factorization (20 mm ISR cube: 3.6 s, about 70 relaxation iterations); -1: by dimension, "        \
-	  "none for discs and 5 for spheres; 0: none [-]")                                                                                              \
+	X(long, changingLimit, -1, swelldem_attr::Setting,                                                                                                  \
+	  "Newton iterations after which a round whose last iteration still changed the state of contacts goes on by dynamic relaxation, as "   \
+	  "after newtonLimit, and is settled as soon as it is within stallTolerance: after a 3D cracking round's breaks 30 to 100 contacts "       \
+	  "change state at every iteration, each of which then refactors (20 mm ISR cube: about 5 s an iteration); -1: by dimension, none "      \
+	  "for discs and 5 for spheres; 0: none [-]")                                                                                                   \
 	X(Real, relaxTolerance, 1e-4, swelldem_attr::Setting,                                                                                                \
 	  "Unbalanced-force ratio at which dynamic relaxation hands back to Newton; each further relaxation of the same round goes 100x lower [-]")  \
 	X(Real, stallTolerance, 1e-5, swelldem_attr::Setting,                                                                                                \
 	  "Unbalanced-force ratio at which a round that Newton has not brought to `tolerance` within newtonLimit iterations is settled "            \
-	  "(a broken contact on its open / closed kink; 10x below the ADR's default tolerance), or that factorLimit has handed to relaxation; 0: never [-]")                                         \
+	  "(a broken contact on its open / closed kink; 10x below the ADR's default tolerance), or that changingLimit has handed to relaxation; 0: never [-]")                                         \
 	X(long, lowRankChanges, 16, swelldem_attr::Setting,                                                                                              \
 	  "Contacts changing state (open, closed, sticking, sliding) since the factor was made, up to which the changes enter the solve "        \
 	  "exactly as low-rank columns (one solve each, Woodbury) instead of a new factorization; 0: refactor at any change [-]")                     \
@@ -149,8 +149,7 @@ public:
 	X(bool, fallback, false, swelldem_attr::Internal, "The current step was handed to dynamic relaxation (fallbackIterations) [-]")                   \
 	X(long, fallbackRelaxStart, 0, swelldem_attr::Internal, "relaxationIterations when the current step was handed over [-]")                     \
 	X(long, newtonSince, 0, swelldem_attr::Internal, "Iteration of the step at which Newton (re)started [-]")                                         \
-	X(long, newtonSinceFactorizations, 0, swelldem_attr::Internal, "factorizations when Newton (re)started [-]")                                    \
-	X(bool, factorHandOver, false, swelldem_attr::Internal, "factorLimit has handed the current round to dynamic relaxation: it settles within stallTolerance [-]") \
+	X(bool, changingHandOver, false, swelldem_attr::Internal, "changingLimit has handed the current round to dynamic relaxation: it settles within stallTolerance [-]") \
 	X(int, relaxPhase, 0, swelldem_attr::Internal, "Dynamic relaxation phases in the current round [-]")                                             \
 	X(DynamicRelaxation, relax, DynamicRelaxation(), swelldem_attr::Internal, "State of the dynamic relaxation phases [-]")
 	SWELLDEM_CLASS(ImplicitLogTimeSolver, LogTimeSolver,
@@ -188,7 +187,7 @@ private:
 	void                                  shiftDiagonal(Real kLoose);         // regularization, loose DOFs, rotations
 	Real                                  rotationShift(Real diagonal) const; // of a rotation's diagonal entry
 	Real                                  rotationShiftFactor() const; // rotationRegularization, or its dimension's default
-	long                                  factorLimitOfDimension() const; // factorLimit, or its dimension's default
+	long                                  changingLimitOfDimension() const; // changingLimit, or its dimension's default
 	void                                  addDiagonalColumns(const std::vector<Real>& raw, Real kLoose);
 	bool                                  needsFactor(bool freshFactor) const; // K no longer within refactorTolerance and lowRankChanges of the factor
 	void                                  factor();
