@@ -1216,10 +1216,13 @@ void ImplicitLogTimeSolver::action()
 	}
 	// After a 3D cracking round's breaks 30 to 100 contacts change state at every Newton iteration,
 	// and each such iteration refactors and solves the sliding contacts' columns anew (20 mm cube:
-	// about 5 s, some 100 relaxation iterations): a Newton phase still changing contacts after
-	// changingLimit iterations hands the round to relaxation, which settles it within stallTolerance.
+	// about 5 s, some 100 relaxation iterations); once contacts have broken, the broken ones' kinks
+	// and slips leave Newton's later iterations linear at best. A Newton phase of a specimen with
+	// broken contacts, or one still changing contacts' states, hands the round to relaxation after
+	// changingLimit iterations, which settles it within stallTolerance. An intact specimen keeps
+	// newtonLimit, and Newton's exact equilibrium.
 	const long cLimit   = changingLimitOfDimension();
-	const bool changing = cLimit > 0 && activeChanges > 0 && iterInStep - newtonSince > cLimit;
+	const bool changing = cLimit > 0 && (activeChanges > 0 || law2->nBreaks > 0) && iterInStep - newtonSince > cLimit;
 	if (!relaxing && (iterInStep - newtonSince > newtonLimit || changing)) {
 		changingHandOver = changingHandOver || changing;
 		relaxing  = true;
