@@ -1216,7 +1216,7 @@ void ImplicitLogTimeSolver::action()
 	}
 	// After a 3D cracking round's breaks 30 to 100 contacts change state at every Newton iteration,
 	// and each such iteration refactors and solves the sliding contacts' columns anew (20 mm cube:
-	// about 5 s, some 100 relaxation iterations); once contacts have broken, the broken ones' kinks
+	// about 5 s, some 60 relaxation iterations); once contacts have broken, the broken ones' kinks
 	// and slips leave Newton's later iterations linear at best. A Newton phase of a specimen with
 	// broken contacts, or one still changing contacts' states, hands the round to relaxation after
 	// changingLimit iterations, which settles it within stallTolerance. An intact specimen keeps
