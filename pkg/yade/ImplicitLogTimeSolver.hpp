@@ -84,7 +84,8 @@ public:
 	  "Unbalanced-force ratio at which dynamic relaxation hands back to Newton; each further relaxation of the same round goes 100x lower [-]")  \
 	X(Real, stallTolerance, 1e-5, swelldem_attr::Setting,                                                                                                \
 	  "Unbalanced-force ratio at which a round that Newton has not brought to `tolerance` within newtonLimit iterations is settled "            \
-	  "(a broken contact on its open / closed kink; 10x below the ADR's default tolerance), or that changingLimit has handed to relaxation; 0: never [-]")                                         \
+	  "(a broken contact on its open / closed kink; 10x below the ADR's default tolerance), or that changingLimit has handed to "               \
+	  "relaxation; 0: never [-]")                                                                                                                  \
 	X(long, lowRankChanges, 16, swelldem_attr::Setting,                                                                                              \
 	  "Contacts changing state (open, closed, sticking, sliding) since the factor was made, up to which the changes enter the solve "        \
 	  "exactly as low-rank columns (one solve each, Woodbury) instead of a new factorization; 0: refactor at any change [-]")                     \
@@ -149,7 +150,8 @@ public:
 	X(bool, fallback, false, swelldem_attr::Internal, "The current step was handed to dynamic relaxation (fallbackIterations) [-]")                   \
 	X(long, fallbackRelaxStart, 0, swelldem_attr::Internal, "relaxationIterations when the current step was handed over [-]")                     \
 	X(long, newtonSince, 0, swelldem_attr::Internal, "Iteration of the step at which Newton (re)started [-]")                                         \
-	X(bool, changingHandOver, false, swelldem_attr::Internal, "changingLimit has handed the current round to dynamic relaxation: it settles within stallTolerance [-]") \
+	X(bool, changingHandOver, false, swelldem_attr::Internal,                                                                                          \
+	  "changingLimit has handed the current round to dynamic relaxation: it settles within stallTolerance [-]")                                   \
 	X(int, relaxPhase, 0, swelldem_attr::Internal, "Dynamic relaxation phases in the current round [-]")                                             \
 	X(DynamicRelaxation, relax, DynamicRelaxation(), swelldem_attr::Internal, "State of the dynamic relaxation phases [-]")
 	SWELLDEM_CLASS(ImplicitLogTimeSolver, LogTimeSolver,
