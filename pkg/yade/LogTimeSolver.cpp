@@ -396,10 +396,16 @@ void LogTimeSolver::progressLine() const
 	const double el   = wallNow();
 	const double last = stepWall.size() >= 2 ? stepWall.back() - stepWall[stepWall.size() - 2] : el;
 	const double left = std::max(el / step, last) * (nSteps() - step);
-	// A step that ended above the tolerance ended at the positions' round-off: say so, and where that lies.
-	char reached[96] = "";
-	if (!stepRoundOff.empty() && stepRoundOff.back() > 0 && !stepRoundOffRatio.empty())
-		std::snprintf(reached, sizeof reached, " (at round-off: limit %.1e, tolerance %.0e)", stepRoundOffRatio.back(), tolerance);
+	// A step that ended above the tolerance ended at the positions' round-off, or (the implicit
+	// solver) was settled by its relaxation's looser tolerances: say which, and where round-off lies.
+	char reached[128] = "";
+	if (!stepRoundOff.empty() && stepRoundOff.back() > 0 && !stepRoundOffRatio.empty()) {
+		if (unbalanced <= stepRoundOffRatio.back())
+			std::snprintf(reached, sizeof reached, " (at round-off: limit %.1e, tolerance %.0e)", stepRoundOffRatio.back(), tolerance);
+		else
+			std::snprintf(reached, sizeof reached, " (above the tolerance %.0e, settled by relaxation; round-off limit %.1e)", tolerance,
+			              stepRoundOffRatio.back());
+	}
 	std::printf("swelldem: step %d/%d  t = %s d  %s iterations %ld%s (total %ld)  unbalanced %.2e%s  elapsed %.1f s  left ~%.1f s\n", step,
 	            nSteps(), num(physTime).c_str(), iterationName, iterInStep, (progressDetail ? progressDetail() : std::string()).c_str(), totalIterations,
 	            unbalanced, reached, el, left);

@@ -58,7 +58,8 @@ public:
 	X(std::vector<Real>, stepIterations, std::vector<Real>(), swelldem_attr::Result, "Iterations of each converged step [-]")                         \
 	X(std::vector<Real>, stepUnbalanced, std::vector<Real>(), swelldem_attr::Result, "Unbalanced-force ratio at the end of each converged step [-]")  \
 	X(std::vector<Real>, stepRoundOff, std::vector<Real>(), swelldem_attr::Result,                                                                      \
-	  "1 where a step ended at the round-off limit of the positions above the tolerance, else 0 [-]")                                                \
+	  "1 where a step ended above the tolerance: at the positions' round-off limit (stepRoundOffRatio), or above it where the implicit " \
+	  "solver settled the step by relaxation (stallTolerance, fallbackTolerance); else 0 [-]")                                                \
 	X(std::vector<Real>, stepRoundOffRatio, std::vector<Real>(), swelldem_attr::Result,                                                                 \
 	  "Unbalanced-force ratio of the positions' round-off limit at the end of each converged step (256 machine epsilons of the "             \
 	  "largest coordinate times the mean contact stiffness, over the mean contact force): no equilibrium is resolved below it [-]")       \

@@ -341,9 +341,15 @@ def plot_unbalanced(path, res):
         # the ratio below which the positions resolve no better equilibrium, at each step's end
         ax.semilogy(ends[:n], limit[:n], "_", ms=9, mew=1.5, color="tab:orange",
                     label="round-off limit of the positions\n(no equilibrium resolved below it)")
-    if ro.any():  # steps that ended at that limit, above the tolerance
-        ax.semilogy(ends[:n][ro], at_end[:n][ro], "x", color="tab:red",
-                    label=f"step ended at the round-off limit\n({int(ro.sum())} of {n} steps)")
+    if ro.any():  # steps that ended above the tolerance: at that limit, or settled by the implicit solver's relaxation
+        above = ro & (at_end[:n] > limit[:n]) if len(limit) >= n else np.zeros(n, dtype=bool)
+        at = ro & ~above
+        if at.any():
+            ax.semilogy(ends[:n][at], at_end[:n][at], "x", color="tab:red",
+                        label=f"step ended at the round-off limit\n({int(at.sum())} of {n} steps)")
+        if above.any():
+            ax.semilogy(ends[:n][above], at_end[:n][above], "+", ms=8, color="tab:purple",
+                        label=f"step settled by relaxation above the tolerance\n({int(above.sum())} of {n} steps)")
     if _tolerance(res):
         met = n - int(ro.sum())
         ax.axhline(_tolerance(res), color="k", lw=0.8, ls=":", label=f"tolerance {_tolerance(res):g}\n(met by {met} of {n} steps)")

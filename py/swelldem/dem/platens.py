@@ -29,6 +29,14 @@ positive).
 In a 3D box the same holds face for face: the spheres that face a platen (none closer to it within
 a radius across) get its contact, whose facet is the sphere's cross-section (the Ip2's 3D fallback);
 a spring's K is per square metre of the face [N/m / m2], a 2D one's per metre of thickness.
+A facing sphere bonded to the specimen by fewer than MIN_HELD_3D contacts is left out: one bonded
+contact fixes only its contact point and two an axis, so the sphere can roll about them, and under
+a platen load it rolls across the lubricated platen until a contact lines up with the load (a
+mechanism of the packing's cut edges, not of concrete; the 12 x 12 x 24 mm prism of
+scripts/loaded_expansion.py has three such spheres with one contact and 25 with two among 583 that
+face its z platens). Such a sphere shares no collision-mask bit with the platens (YADE's
+Body.groupMask: the platens get PLATEN_MASK, every other sphere keeps bit 1 and gains it), so the
+platen never touches it later either; the overlap it could reach is the platen's travel.
 """
 from dataclasses import dataclass
 
@@ -43,6 +51,10 @@ PLATEN = "PLATEN"
 PLATEN_YOUNG = 200e9
 #: ks / kn of platen contacts [-]: lubricated platens (nearly frictionless, but not a mechanism).
 PLATEN_SHEAR_RATIO = 1e-6
+#: In 3D, the fewest bonded specimen contacts of a sphere the platen holds (see the module's doc).
+MIN_HELD_3D = 3
+#: Collision-mask bit of the platens in 3D; the spheres a platen leaves out lack it.
+PLATEN_MASK = 2
 BOUNDARY_TYPES = ("free", "fixed", "stress", "spring")
 AXES = ("x", "y", "z")
 
@@ -83,8 +95,10 @@ class Boundary:
 class Platens:
     """The platens of a scene (see the module's doc): body ids per axis, and their readings."""
 
-    def __init__(self, boundaries, walls, area):
+    def __init__(self, boundaries, walls, area, left_out=()):
         self.boundaries, self.walls, self.area = boundaries, walls, area
+        #: body ids of the facing spheres the platens leave out (3D, fewer than MIN_HELD_3D bonded contacts)
+        self.left_out = sorted(left_out)
         self.start = {a: self._distance(a) for a in walls}
 
     def _distance(self, axis):
@@ -180,6 +194,11 @@ def add_platens(assembly, yscene, boundary_x=Boundary(), boundary_y=Boundary(), 
         per = {"x": thickness, "y": thickness}  # a spring's K is per metre of thickness
     axes = AXES[:dim]
     walls, area, forces = {}, {}, []
+    specimen = {int(i) for i in yscene.ids}
+    left_out = set()
+    if dim == 3:
+        for i in specimen:
+            O.bodies[i].groupMask = O.bodies[i].groupMask | PLATEN_MASK
     ip2.cohesive = True
     try:
         for k, a in enumerate(axes):
@@ -195,12 +214,20 @@ def add_platens(assembly, yscene, boundary_x=Boundary(), boundary_y=Boundary(), 
                 where = [0.0, 0.0, 0.0]
                 where[k] = pos
                 body = yade.utils.wall(tuple(where), axis=k, sense=sense, material=mat)
+                if dim == 3:
+                    body.groupMask = PLATEN_MASK
                 body.state.blockedDOFs = "".join(d for d in "xyz" if d != a) + "XYZ" if moves else "xyzXYZ"
                 wid = O.bodies.append(body)
                 ids.append(wid)
                 others = [centre[o] for o in axes if o != a]
                 near = facing_discs(c if sense < 0 else -c, others[0] if dim == 2 else np.c_[others[0], others[1]], assembly.r, band)
                 for i in near:
+                    if dim == 3:
+                        bid = int(yscene.ids[i])
+                        held = sum(1 for J in O.interactions.withBody(bid) if J.isReal and {J.id1, J.id2} <= specimen)
+                        if held < MIN_HELD_3D:
+                            left_out.add(bid)
+                            continue
                     I = yade.utils.createInteraction(wid, int(yscene.ids[i]))
                     if I is None or not I.isReal:
                         raise RuntimeError(f"swelldem: the platen contact of disc {int(i)} did not become a real interaction")
@@ -215,8 +242,13 @@ def add_platens(assembly, yscene, boundary_x=Boundary(), boundary_y=Boundary(), 
                 solver.springBodies = list(solver.springBodies) + [hi]
                 solver.springAxes = list(solver.springAxes) + [k]
                 solver.springStiffness = list(solver.springStiffness) + [b.value * per[a]]
+        for i in left_out:
+            O.bodies[i].groupMask = O.bodies[i].groupMask & ~PLATEN_MASK
     finally:
         ip2.cohesive = False
     if forces:  # before the solver, the last engine
         O.engines = O.engines[:-1] + forces + [O.engines[-1]]
-    return Platens(boundaries, walls, area)
+    if left_out:
+        print(f"swelldem: set-up: {len(left_out)} spheres facing a platen are bonded to the specimen by fewer than {MIN_HELD_3D} "
+              "contacts and left out of the platens' contacts (they could roll under the load)", flush=True)
+    return Platens(boundaries, walls, area, left_out)
