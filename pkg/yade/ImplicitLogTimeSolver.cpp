@@ -577,7 +577,7 @@ Real ImplicitLogTimeSolver::rotationShiftFactor() const
 	return nDim == 3 ? 1e-5 : 1e-3;
 }
 
-long ImplicitLogTimeSolver::changingLimitOfDimension() const { return changingLimit >= 0 ? changingLimit : (nDim == 3 ? 5 : 0); }
+long ImplicitLogTimeSolver::changingLimitOfDimension() const { return changingLimit >= 0 ? changingLimit : (nDim == 3 ? 2 : 0); }
 
 Real ImplicitLogTimeSolver::rotationShift(Real diagonal) const { return rotationShiftFactor() * std::min(diagonal, Real(sys->rotationScale)); }
 

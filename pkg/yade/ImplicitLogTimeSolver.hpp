@@ -79,7 +79,7 @@ public:
 	  "Newton iterations after which a round of a specimen with broken contacts, or whose last iteration still changed the state of "       \
 	  "contacts, goes on by dynamic relaxation, as after newtonLimit, and is settled as soon as it is within stallTolerance: after a 3D "     \
 	  "cracking round's breaks 30 to 100 contacts change state at every iteration, each of which then refactors (20 mm ISR cube: about "     \
-	  "5 s an iteration); -1: by dimension, none for discs and 5 for spheres; 0: none [-]")                                                      \
+	  "5 s an iteration); -1: by dimension, none for discs and 2 for spheres; 0: none [-]")                                                      \
 	X(Real, relaxTolerance, 1e-4, swelldem_attr::Setting,                                                                                                \
 	  "Unbalanced-force ratio at which dynamic relaxation hands back to Newton; each further relaxation of the same round goes 100x lower [-]")  \
 	X(Real, stallTolerance, 1e-5, swelldem_attr::Setting,                                                                                                \
