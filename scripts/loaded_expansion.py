@@ -182,7 +182,9 @@ ax.set_xlabel("time [day]")
 ax.set_ylabel("ASR expansion (reactive minus inert under the same load) [1e-6]")
 ax.set_title("ASR expansion of a loaded prism")
 ax.grid(alpha=0.3)
-ax.legend(fontsize=7, ncol=len(args.stresses_mpa))
+top = max(max(asr[s][3].max(), asr[s][1].max(), asr[s][2].max()) for s in args.stresses_mpa) * 1e6
+ax.set_ylim(top=1.35 * top)  # room above the curves for the legend
+ax.legend(fontsize=7, ncol=len(args.stresses_mpa), loc="upper left")
 S = np.array(args.stresses_mpa)
 for key, i, mark in (("along the load", 1, "o-"), ("across", 2, "s--"), ("volume", 3, "^:")):
     axs.plot(S, [asr[s][i][-1] / free[i][-1] for s in args.stresses_mpa], mark, label=f"model: {key}")
