@@ -18,7 +18,6 @@ results.json says 'finished' is kept. Writes DIR/loaded_expansion.png, .csv and 
 """
 import argparse
 import csv
-import dataclasses
 import json
 import os
 import subprocess
@@ -29,7 +28,7 @@ import numpy as np
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, "py"))
-from swelldem import options, report, scenario  # noqa: E402
+from swelldem import options, report, scenario, study  # noqa: E402
 
 ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
 ap.add_argument("--stresses-mpa", type=float, nargs="+", default=[0.0, 5.0, 10.0],
@@ -63,21 +62,6 @@ def common(stress, reactive):
                 solver=args.solver, steps_per_decade=args.steps_per_decade, t_start_days=args.t_start, aggregate_area_fraction=args.aggregate_area_fraction,
                 boundary_z=f"stress:{-stress * 1e6:g}" if stress > 0 else "free",
                 **({} if reactive else {"eps_inf": 0.0}))
-
-
-def options_of(settings):
-    """swelling_test.py's options for the SwellingTest fields `settings` (common()): the run made is
-    the test validated and compared with a folder's results.json."""
-    flags = {f.name: f.metadata.get("flag") or f"--{f.name.replace('_', '-')}" for f in dataclasses.fields(scenario.SwellingTest)}
-    out = []
-    for name, value in settings.items():
-        if name == "damage":
-            out += [] if value else ["--no-damage"]
-        elif isinstance(value, tuple):
-            out += [flags[name], *[f"{v:g}" for v in value]]
-        else:
-            out += [flags[name], f"{value:g}" if isinstance(value, float) else str(value)]
-    return out
 
 
 with options.refuse_bad("loaded_expansion.py"):
@@ -114,7 +98,7 @@ for (s, reactive), test in runs.items():
     if not done:
         os.makedirs(test.out, exist_ok=True)
         cmd = [os.path.join(REPO, "scripts", "yade-swelldem"), "-j", "1", "-n", "-x", os.path.join(REPO, "scripts", "swelling_test.py"),
-               *options_of(common(s, reactive)), "--out", test.out]
+               *study.command_options(common(s, reactive)), "--out", test.out]
         t0 = time.time()
         with open(os.path.join(test.out, "log.txt"), "w") as log:
             rc = subprocess.call(cmd, stdout=log, stderr=subprocess.STDOUT, env=env)

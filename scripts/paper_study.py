@@ -4,15 +4,17 @@ aging viscoelastic x without, with damage) on one specimen size, then its Tables
 3.7 next to the paper's values and its figures, all in one folder with an index.md.
 
   /usr/bin/python3 scripts/paper_study.py --size-mm W H --jobs N --out DIR [--seed S] [--steps-per-decade K]
-      [--solver adr|implicit]
+      [--solver adr|implicit] [--scheduler tcp://HOST:PORT]
 
-Each run is scripts/swelling_test.py in its own process (scripts/yade-swelldem -j 1), N at a time,
-into DIR/<scenario>-<el|ve>-<nodmg|dmg>/ with its log DIR/<run>.log. Resumable: a run whose
-results.json says 'finished' with the same size, seed, steps per decade and solver is kept, any other
-(failed, interrupted, killed, absent) runs again; a finished run of other settings in DIR stops the
-study before any work (choose another DIR). Ctrl-C or SIGTERM stops the running jobs (their
-results.json says 'interrupted'); the next call goes on from there. Progress: one line per run
-started and ended, and DIR/progress.md.
+Each run is scripts/swelling_test.py in its own process (scripts/yade-swelldem -j 1), into
+DIR/<scenario>-<el|ve>-<nodmg|dmg>/ with its log DIR/<run>.log, on N local Dask workers or, with
+--scheduler ADDRESS, on the workers of a running Dask scheduler (swelldem.study). Resumable: a
+run whose results.json says 'finished' with the same settings is kept, any other (failed,
+interrupted, killed, absent) runs again; a finished run of other settings in DIR stops the study
+before any work (choose another DIR). A run whose worker died runs again on another. Ctrl-C or
+SIGTERM stops the running jobs (their results.json says 'interrupted'); the next call goes on from
+there. Progress: one line per run started and ended, DIR/progress.md, and DIR/runs.md (the worker
+and wall time of each run).
 
 DIR then holds index.md (the runs, the three tables, the figures and the paper's figure each one
 matches), tables.md, study.csv and per scenario <scenario>_strain.png, <scenario>_unbalanced_nodmg.png,
@@ -22,20 +24,14 @@ figures show what there is), 2 for bad options (before any work). The solver is 
 unless --solver implicit."""
 import argparse
 import csv
-import json
 import os
-import signal
-import subprocess
 import sys
-import time
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, "py"))
-from swelldem import options, paper, report, scenario  # noqa: E402
+from swelldem import options, paper, report, scenario, study  # noqa: E402
 from swelldem.scenario import SwellingTest  # noqa: E402
 
-LAUNCHER = os.path.join(REPO, "scripts", "yade-swelldem")
-SCRIPT = os.path.join(REPO, "scripts", "swelling_test.py")
 #: The plugin's range of LogTimeSolver.stepsPerDecade, checked here so that it stops the study before any run.
 STEPS_PER_DECADE_MAX = 10000
 
@@ -53,8 +49,15 @@ def split(name):
     return sc, b, d
 
 
-def settings_of(a):
-    return {"size_mm": [float(v) for v in a.size_mm], "seed": a.seed, "steps_per_decade": float(a.steps_per_decade), "solver": a.solver}
+def runs_of(a):
+    """The 12 runs as a study's runs (swelldem.study): each its SwellingTest fields."""
+    runs = []
+    for name in run_names():
+        sc, b, d = split(name)
+        runs.append(study.Run(name, {"scenario": sc, "behaviour": paper.BEHAVIOUR_KEYS[b], "damage": d == "dmg",
+                                     "size_mm": tuple(float(v) for v in a.size_mm), "seed": a.seed,
+                                     "steps_per_decade": float(a.steps_per_decade), "solver": a.solver}))
+    return runs
 
 
 def check(a):
@@ -64,105 +67,10 @@ def check(a):
     options.integer("jobs", a.jobs, lo=1)
     options.number("steps_per_decade", a.steps_per_decade, lo=0, hi=STEPS_PER_DECADE_MAX, hi_incl=True,
                    allowed=f"0 < steps_per_decade <= {STEPS_PER_DECADE_MAX} [1/decade]")
-    # the swelling test's own checks (size, seed, the mesostructure generator's limits)
+    # the swelling test's own checks (size, seed, the mesostructure generator's limits), and the
+    # finished runs in DIR against this study's settings
     SwellingTest(size_mm=tuple(a.size_mm), seed=a.seed, steps_per_decade=a.steps_per_decade, solver=a.solver, out=a.out).validate()
-    want = settings_of(a)
-    for name in run_names():
-        got = finished_settings(os.path.join(a.out, name))
-        if got is not None and got != want:
-            options.bad("out", a.out, f"a new folder or one of a study with the same settings: {name} there finished with "
-                                      f"size_mm {got['size_mm']}, seed {got['seed']}, steps_per_decade {got['steps_per_decade']:g}, "
-                                      f"solver {got['solver']}")
-
-
-def finished_settings(folder):
-    """The settings of a finished run in `folder`, or None when it has none that finished."""
-    try:
-        with open(os.path.join(folder, "results.json")) as f:
-            res = json.load(f)
-    except (OSError, ValueError):
-        return None
-    if not isinstance(res, dict) or res.get("status") != "finished":
-        return None
-    cfg = res.get("config") or {}
-    return {"size_mm": [float(v) for v in cfg.get("size_mm", ())], "seed": cfg.get("seed"),
-            "steps_per_decade": float(cfg.get("steps_per_decade", float("nan"))), "solver": cfg.get("solver")}
-
-
-def command(name, a):
-    sc, b, d = split(name)
-    cmd = [LAUNCHER, "-j", "1", "-n", "-x", SCRIPT, "--scenario", sc, "--behaviour", paper.BEHAVIOUR_KEYS[b],
-           "--size-mm", f"{a.size_mm[0]:g}", f"{a.size_mm[1]:g}", "--seed", str(a.seed),
-           "--steps-per-decade", f"{a.steps_per_decade:g}", "--solver", a.solver, "--out", os.path.join(a.out, name)]
-    return cmd + (["--no-damage"] if d == "nodmg" else [])
-
-
-class Progress:
-    """Progress lines on stdout and DIR/progress.md (rewritten at each event)."""
-
-    def __init__(self, out, names):
-        self.path, self.t0 = os.path.join(out, "progress.md"), time.time()
-        self.state = {n: "waiting" for n in names}
-
-    def set(self, name, state):
-        self.state[name] = state
-        done = sum(s.startswith(("finished", "kept")) for s in self.state.values())
-        print(f"paper_study: [{time.time() - self.t0:7.0f} s] {name}: {state} ({done}/{len(self.state)} done)", flush=True)
-        lines = ["# Paper study: progress", "", "| run | state |", "|---|---|"] + [f"| {n} | {s} |" for n, s in self.state.items()]
-        with open(self.path + ".tmp", "w") as f:
-            f.write("\n".join(lines) + "\n")
-        os.replace(self.path + ".tmp", self.path)
-
-
-def run_all(a, progress):
-    """Runs the runs that have not finished, a.jobs at a time; returns False when stopped by a signal."""
-    want = settings_of(a)
-    todo = []
-    for name in run_names():
-        if finished_settings(os.path.join(a.out, name)) == want:
-            progress.set(name, "kept (finished in an earlier call)")
-        else:
-            todo.append(name)
-    stop = []
-    handlers = {sig: signal.signal(sig, lambda s, f: stop.append(s)) for sig in (signal.SIGTERM, signal.SIGINT)}
-    env = dict(os.environ, OMP_NUM_THREADS="1")
-    running = {}
-    try:
-        while (todo or running) and not stop:
-            while todo and len(running) < a.jobs:
-                name = todo.pop(0)
-                log = open(os.path.join(a.out, f"{name}.log"), "w")
-                running[name] = (subprocess.Popen(command(name, a), stdout=log, stderr=subprocess.STDOUT, env=env,
-                                                  start_new_session=True), log, time.time())
-                progress.set(name, "running")
-            time.sleep(0.5)
-            for name, (proc, log, t0) in list(running.items()):
-                if proc.poll() is None:
-                    continue
-                log.close()
-                del running[name]
-                progress.set(name, f"{status_of(os.path.join(a.out, name))} (exit {proc.returncode}, {time.time() - t0:.0f} s)")
-    finally:
-        for name, (proc, log, t0) in running.items():  # stopped: each job writes 'interrupted' into its results.json
-            proc.send_signal(signal.SIGTERM)
-        for name, (proc, log, t0) in running.items():
-            try:
-                proc.wait(timeout=60)
-            except subprocess.TimeoutExpired:
-                proc.kill()
-            log.close()
-            progress.set(name, f"{status_of(os.path.join(a.out, name))} (stopped)")
-        for sig, h in handlers.items():
-            signal.signal(sig, h)
-    return not stop
-
-
-def status_of(folder):
-    try:
-        with open(os.path.join(folder, "results.json")) as f:
-            return str(json.load(f).get("status", "?"))
-    except (OSError, ValueError):
-        return "no results.json"
+    study.check(runs_of(a), a.out)
 
 
 FIGURES = {  # file suffix -> (what it shows, the paper's figures of the same form per scenario)
@@ -261,7 +169,9 @@ def report_study(a):
 def main(argv):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--size-mm", nargs=2, type=float, required=True, metavar=("W", "H"), help="specimen width and height [mm] (paper: 100 100)")
-    ap.add_argument("--jobs", type=int, required=True, help="runs at a time, one process and one thread each [-]")
+    ap.add_argument("--jobs", type=int, required=True, help="runs at a time: local Dask workers, one process and one thread each [-]")
+    ap.add_argument("--scheduler", default=None, help="address of a running Dask scheduler (tcp://HOST:PORT) whose workers run the "
+                                                      "study instead of local ones (docs/guide.md, \"Studies on a cluster\")")
     ap.add_argument("--out", required=True, help="folder of the study (made if absent; an earlier call's folder resumes it)")
     ap.add_argument("--seed", type=int, default=1, help="seed of the mesostructure, the same for the 12 runs [-]")
     ap.add_argument("--steps-per-decade", type=float, default=10.0, help="physical steps per decade of log time [1/decade]")
@@ -271,9 +181,7 @@ def main(argv):
     a = ap.parse_args(argv)
     with options.refuse_bad("paper_study.py"):  # exit status 2, as argparse's, before any work
         check(a)
-    os.makedirs(a.out, exist_ok=True)
-    progress = Progress(a.out, run_names())
-    completed = run_all(a, progress)
+    completed = study.run_study(runs_of(a), a.out, jobs=a.jobs, scheduler=a.scheduler, prog="paper_study")
     all_done = report_study(a)
     print(f"paper_study: tables and figures in {a.out}/index.md")
     if not completed:

@@ -48,7 +48,7 @@ def results(out, name):
 
 def test_study_folder(done):
     out, p = done
-    assert p.stdout.count(": running (") == 12
+    assert p.stdout.count(": running on ") == 12
     index = (out / "index.md").read_text()
     for sc in ("isr", "asr-fine", "asr-coarse"):
         for fig in ("strain", "unbalanced_nodmg", "unbalanced_dmg", "forces_nodmg", "forces_dmg"):
@@ -122,7 +122,7 @@ def test_resume(done):
     stamps = {n: os.stat(out / n / "results.json").st_mtime_ns for n in RUNS}
     p = study(out)
     assert p.returncode == 0, p.stderr[-3000:]
-    assert p.stdout.count("kept (finished in an earlier call)") == 12 and ": running (" not in p.stdout
+    assert p.stdout.count("kept (finished in an earlier call)") == 12 and ": running on " not in p.stdout
     assert {n: os.stat(out / n / "results.json").st_mtime_ns for n in RUNS} == stamps
     # an interrupted run, and only it, runs again
     res = results(out, "isr-el-nodmg")
@@ -130,7 +130,7 @@ def test_resume(done):
     (out / "isr-el-nodmg" / "results.json").write_text(json.dumps(res))
     p = study(out)
     assert p.returncode == 0, p.stderr[-3000:]
-    assert p.stdout.count(": running (") == 1 and "isr-el-nodmg: running" in p.stdout
+    assert p.stdout.count(": running on ") == 1 and "isr-el-nodmg: running on" in p.stdout
     assert results(out, "isr-el-nodmg")["status"] == "finished"
 
 
