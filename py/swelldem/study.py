@@ -315,8 +315,8 @@ class Progress:
     and left, and the time left estimated from the runs that ended in this call (their mean wall
     time over the workers; none before the first has ended)."""
 
-    def __init__(self, out, names, prog):
-        self.path, self.t0, self.prog = os.path.join(out, "progress.md"), time.time(), prog
+    def __init__(self, out, names, prog, quiet=False):
+        self.path, self.t0, self.prog, self.quiet = os.path.join(out, "progress.md"), time.time(), prog, quiet
         self.state = {n: "waiting" for n in names}
         self.started, self.walls, self.workers = {}, [], 1
 
@@ -334,14 +334,14 @@ class Progress:
         busy = sum(max(mean - (now - t), 0.0) for n, t in self.started.items() if self.state[n].startswith("running"))
         return (busy + waiting * mean) / max(self.workers, 1)
 
-    def set(self, name, state, quiet=False):
+    def set(self, name, state):
         self.state[name] = state
         if state.startswith("running"):
             self.started[name] = time.time()
         done, running, waiting = self.counts()
         left = self.left_s()
         eta = f", about {_fmt_s(left)} left" if left is not None and (running or waiting) else ""
-        if not quiet:
+        if not self.quiet:
             print(f"{self.prog}: [{time.time() - self.t0:7.0f} s] {name}: {state} ({done} done, {running} running, {waiting} waiting of "
                   f"{len(self.state)}{eta})", flush=True)
         lines = [f"# {self.prog}: progress", "", f"{done} done, {running} running, {waiting} waiting of {len(self.state)}{eta} "
@@ -358,10 +358,11 @@ def _record(out, runs, record):
         json.dump({"runs": record}, f, indent=1)
     os.replace(os.path.join(out, "runs.json.tmp"), os.path.join(out, "runs.json"))
     lines = ["| run | state | worker | host | wall [s] | attempts |", "|---|---|---|---|---|---|"]
-    for r in runs:
-        rec = record.get(r.name, {})
+    names = [r.name for r in runs]
+    for name in names + sorted(set(record) - set(names)):  # an earlier batch's runs too
+        rec = record.get(name, {})
         wall = rec.get("wall_s")
-        lines.append(f"| {r.name} | {rec.get('state', 'waiting')} | {rec.get('worker', '')} | {rec.get('host', '')} | "
+        lines.append(f"| {name} | {rec.get('state', 'waiting')} | {rec.get('worker', '')} | {rec.get('host', '')} | "
                      f"{'' if wall is None else f'{wall:.1f}'} | {len(rec.get('attempts', []))} |")
     with open(os.path.join(out, "runs.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
@@ -380,12 +381,52 @@ def _client(jobs, scheduler):
     return Client(cluster), cluster
 
 
+class Runner:
+    """Dask workers for one or more batches of runs: a local cluster of `jobs` processes (one
+    thread each) or a running scheduler's workers (`scheduler` address), connected at the first
+    batch that has work and kept until close() (a context manager). run() is one batch."""
+
+    def __init__(self, jobs=1, scheduler=None, prog="study"):
+        self.jobs, self.scheduler, self.prog = jobs, scheduler, prog
+        self.client = self.cluster = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def close(self):
+        if self.client is not None:
+            self.client.close()
+        if self.cluster is not None:
+            self.cluster.close()
+        self.client = self.cluster = None
+
+    def connect(self):
+        if self.client is None:
+            self.client, self.cluster = _client(self.jobs, self.scheduler)
+        return self.client
+
+    def run(self, runs, out, quiet=False):
+        """Runs the runs into the folder `out` (check() first); True when every run was done
+        (kept or made, whatever its status), False when stopped by a signal."""
+        return _run_batch(self, runs, out, quiet)
+
+
 def run_study(runs, out, jobs=1, scheduler=None, prog="study"):
-    """Runs the runs of a study into the folder `out` (check() first, then this); returns True
-    when every run was done (kept or made, whatever its status), False when stopped by a signal.
-    jobs: local workers (one process and one thread each) when no scheduler address is given."""
+    """Runs the runs of a study into the folder `out` (check() first, then this) on a Runner of its
+    own; returns True when every run was done (kept or made, whatever its status), False when
+    stopped by a signal. jobs: local workers (one process and one thread each) when no scheduler
+    address is given."""
+    with Runner(jobs, scheduler, prog) as runner:
+        return runner.run(runs, out)
+
+
+def _run_batch(runner, runs, out, quiet):
+    prog, scheduler = runner.prog, runner.scheduler
     os.makedirs(out, exist_ok=True)
-    progress = Progress(out, [r.name for r in runs], prog)
+    progress = Progress(out, [r.name for r in runs], prog, quiet)
     try:
         with open(os.path.join(out, "runs.json")) as f:
             record = json.load(f).get("runs", {})
@@ -404,12 +445,13 @@ def run_study(runs, out, jobs=1, scheduler=None, prog="study"):
     token = f"{socket.gethostname()}-{os.getpid()}-{time.time():.0f}"
     stop = []
     handlers = {sig: signal.signal(sig, lambda s, f: stop.append(s)) for sig in (signal.SIGTERM, signal.SIGINT)}
-    client, cluster = _client(jobs, scheduler)
+    client = runner.connect()
     try:
         from distributed import as_completed
         progress.workers = max(len(client.scheduler_info().get("workers", {})), 1)
-        print(f"{prog}: {len(todo)} runs on {progress.workers} Dask workers ({'scheduler ' + scheduler if scheduler else 'a local cluster'}; "
-              f"dashboard {client.dashboard_link if cluster is None else 'off'})", flush=True)
+        if not quiet:
+            print(f"{prog}: {len(todo)} runs on {progress.workers} Dask workers ({'scheduler ' + scheduler if scheduler else 'a local cluster'}"
+                  f"{'; dashboard ' + client.dashboard_link if scheduler else ''})", flush=True)
         futures = {}
         for r in todo:
             fut = client.submit(execute, token, r.name, command(r, out), os.path.join(out, r.name), key=f"{token}-{r.name}", pure=False)
@@ -457,9 +499,6 @@ def run_study(runs, out, jobs=1, scheduler=None, prog="study"):
                     pass
             _record(out, runs, record)
     finally:
-        client.close()
-        if cluster is not None:
-            cluster.close()
         for sig, h in handlers.items():
             signal.signal(sig, h)
     return not stop
