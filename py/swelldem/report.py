@@ -1288,3 +1288,103 @@ def paper_tables_md(runs, folders=None):
         lines.append(f"| {name} | {r.get('n_particles', '?')} | {sum(r['n_contacts_by_kind'].values())} | {size} | {sx * 1e6:.0f}, {sy * 1e6:.0f} | "
                      f"{r.get('iterations', '?')} | {r.get('wall_s', float('nan')):.0f} | {t_last} | {born} | {run_state(r)[:60]} |")
     return lines
+
+
+# -- over seeds: the same run on several mesostructures -------------------------------------------
+
+def seed_series(runs, get):
+    """(times [day], mean, min, max) over the runs (one each seed, the same schedule) of the series
+    get(res); the runs' common steps only (a run that stopped early shortens them)."""
+    n = min(len(r["times_days"]) for r in runs)
+    v = np.array([np.asarray(get(r), dtype=float)[:n] for r in runs])
+    return np.asarray(runs[0]["times_days"][:n], dtype=float), v.mean(axis=0), v.min(axis=0), v.max(axis=0)
+
+
+def _mean_range(values, fmt="{:.2f}"):
+    v = [x for x in values if x == x]
+    if not v:
+        return "-"
+    if len(v) == 1:
+        return fmt.format(v[0])
+    return f"{fmt.format(sum(v) / len(v))} ({fmt.format(min(v))} to {fmt.format(max(v))})"
+
+
+def paper_tables_seeds_md(groups, seeds):
+    """The paper's Tables 3.4 and 3.6 with ours over seeds: per row the mean and (min to max) of the
+    5 % and 95 % quantiles [kN] and broken shares [%] of the run on each seed. groups: {run_key:
+    [results dict per seed]}; seeds: the seeds, in the runs' order."""
+    lines, unfinished = [], False
+    for damage, table in (("nodmg", "3.4"), ("dmg", "3.6")):
+        lines += [f"### Normal contact forces {'with' if damage == 'dmg' else 'without'} damage (paper Table {table}), "
+                  f"ours over seeds {', '.join(map(str, seeds))}", "",
+                  "| analysis | behaviour | contact | 5 % ours: mean (min to max) | 5 % paper | 95 % ours: mean (min to max) | 95 % paper | "
+                  "broken % ours: mean (min to max) | broken % paper |", "|---|---|---|---|---|---|---|---|---|"]
+        for sc in SCENARIOS:
+            for beh in BEHAVIOUR_KEYS:
+                runs = groups.get(f"{sc}-{beh}-{damage}") or []
+                if not runs:
+                    lines.append(f"| {LABEL[sc]} | {BEHAVIOUR_WORDS[beh]} | (not run) | | | | | | |")
+                    continue
+                done = sum(run_state(r) == "finished" for r in runs)
+                mark = "" if done == len(seeds) else f" ({done} of {len(seeds)} seeds finished) †"
+                unfinished |= bool(mark)
+                rows = [{r["kind"]: r for r in final_rows(res, KIND_NAMES)} for res in runs]
+                for kind in KIND_NAMES:
+                    p = TABLE_FORCES[(sc, beh, damage)][kind]
+                    col = lambda k: [r[kind][k] for r in rows]  # noqa: E731
+                    lines.append(f"| {LABEL[sc]} | {BEHAVIOUR_WORDS[beh]}{mark} | {kind} | {_mean_range(col('fn_p05_kN'))} | "
+                                 f"{p['p05']:.1f} | {_mean_range(col('fn_p95_kN'))} | {p['p95']:.1f} | "
+                                 f"{_mean_range(col('broken_pct'), '{:.1f}')} | {p['broken_pct']:.1f} |")
+        lines.append("")
+    if unfinished:
+        lines += ["† not every seed's run finished: a run that did not shows its last step's numbers.", ""]
+    lines += ["Mean and range over the seeds' mesostructures; a difference between two rows smaller than their ranges is not "
+              "one the study can tell from the draw of the mesostructure.", ""]
+    return lines
+
+
+def plot_strain_seeds(path, groups, title):
+    """Swelling strain in x against log time of several runs over seeds: per run its mean (line)
+    and the seeds' min-max (band), with the free swelling of the first run's scenario. groups:
+    [(label, [results dict per seed])]."""
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(7.5, 4.8))
+    t_last = 0.0
+    for k, (label, runs) in enumerate(groups):
+        t, mean, lo, hi = seed_series(runs, lambda r: r.get("swelling_strain_x") or [np.nan] * len(r["times_days"]))
+        st = _style(runs[0], k)
+        ax.fill_between(t, lo * 1e6, hi * 1e6, color=st["color"], alpha=0.2, lw=0)
+        ax.semilogx(t, mean * 1e6, marker="o", ms=2.5, label=f"{label}: mean, band min-max of {len(runs)} seeds", **st)
+        t_last = max(t_last, t[-1]) if len(t) else t_last
+    ax.set(xlabel="time [day]", ylabel="swelling strain in x [1e-6]", title=title)
+    ax.grid(True, which="both", lw=0.3)
+    if groups and t_last > 0:
+        _free_swelling_curve(ax, groups[0][1][0], t_last, _max(*(r.get("swelling_strain_x") for _, rs in groups for r in rs)))
+    _save(fig, path)
+
+
+def plot_forces_seeds(path, groups, title):
+    """plot_force_overlay over seeds: per run (row) and kind (column) the 5 % and 95 % quantiles'
+    means over the seeds (lines) and their min-max (bands), with the first seed's tensile capacity."""
+    plt = _plt()
+    fig, axes = plt.subplots(len(groups), 3, figsize=(13, 3.2 * len(groups) + 0.6), sharex=True, sharey="col", squeeze=False)
+    for r, (label, runs) in enumerate(groups):
+        for c, name in enumerate(KIND_NAMES):
+            ax = axes[r, c]
+            if runs[0]["n_contacts_by_kind"].get(name):
+                for q, ls in (("fn_p95_kN", "-"), ("fn_p05_kN", "--")):
+                    t, mean, lo, hi = seed_series(runs, lambda res: res["per_kind"][name][q])
+                    ax.fill_between(t, lo, hi, color=COLORS[name], alpha=0.2, lw=0)
+                    ax.semilogx(t, mean, ls, color=COLORS[name], label=f"{'95' if q == 'fn_p95_kN' else '5'} % quantile: mean, band min-max")
+                _capacity(ax, runs[0], name)
+                ax.axhline(0, color="0.3", lw=0.5)
+                ax.grid(True, which="major", lw=0.3)
+                if r == len(groups) - 1:
+                    ax.legend(fontsize=6.5, loc="best")
+            ax.set_title(f"{name}: {label} ({len(runs)} seeds)", fontsize=9)
+            if c == 0:
+                ax.set_ylabel("normal force [kN]\n(tension > 0)")
+            if r == len(groups) - 1:
+                ax.set_xlabel("time [day]")
+    fig.suptitle(title, fontsize=11)
+    _save(fig, path)

@@ -460,7 +460,10 @@ def _run_batch(runner, runs, out, quiet):
         seen = 0
         while not pending.is_empty() and not stop:
             progress.workers = max(len(client.scheduler_info().get("workers", {})), 1)
-            for fut in _ready(pending):
+            # the starts read first, the ends then: a run's end reaches the client after the start
+            # of the next run on its worker, and is printed before it
+            events = client.get_events(TOPIC)[seen:]
+            for fut in _ready(pending, wait=not events):
                 r = futures[fut]
                 rec = record.setdefault(r.name, {})
                 try:
@@ -476,7 +479,7 @@ def _run_batch(runner, runs, out, quiet):
                 progress.walls.append(wall)
                 progress.set(r.name, f"{got['status'][:100]} (exit {got['exit']}, {wall:.0f} s on {got['worker']})")
                 _record(out, runs, record)
-            for ev_time, ev in client.get_events(TOPIC)[seen:]:
+            for ev_time, ev in events:
                 seen += 1
                 if isinstance(ev, dict) and ev.get("token") == token and ev.get("run") in progress.state:
                     rec = record.setdefault(ev["run"], {})
@@ -515,13 +518,14 @@ def attempt(rec, worker, started):
     return attempts[-1]
 
 
-def _ready(pending):
-    """The futures of `pending` (distributed.as_completed) that have ended, waiting up to 1 s."""
+def _ready(pending, wait=True):
+    """The futures of `pending` (distributed.as_completed) that have ended; when none has and
+    `wait`, sleeps 1 s (the poll of the progress)."""
     try:
         batch = pending.next_batch(block=False)
     except StopIteration:
         return []
-    if not batch:
+    if not batch and wait:
         time.sleep(1.0)
     return batch
 

@@ -151,3 +151,32 @@ def test_other_settings_in_a_study_folder_refused(done):
     p = study(out, "--size-mm", "20", "20", "--steps-per-decade", "3", jobs="1")
     assert p.returncode == 2 and "swelldem: out = " in p.stderr and "size_mm [12.0, 12.0]" in p.stderr, p.stderr
     assert "running" not in p.stdout
+
+
+def test_seeds_tables_give_mean_and_range_over_the_seeds(done, tmp_path):
+    """--seeds 1 3: the seed-1 runs of the study above, copied into <run>-s1, are kept; the seed-3
+    runs are made; tables.md's rows hold the mean and range of the two runs' own final values."""
+    import shutil
+    out0, _ = done
+    out = tmp_path / "seeds"
+    for name in RUNS:
+        shutil.copytree(out0 / name, out / f"{name}-s1")
+    p = study(out, *ARGS, "--seeds", "1", "3")
+    assert p.returncode == 0, p.stdout[-3000:] + p.stderr[-3000:]
+    assert p.stdout.count("kept (finished in an earlier call)") == 12 and p.stdout.count(": running on ") == 12
+    tables = (out / "tables.md").read_text()
+    for name, damage in (("isr-ve-dmg", "True"), ("asr-coarse-el-nodmg", "False")):
+        a, b = results(out, f"{name}-s1"), results(out, f"{name}-s3")
+        assert a["config"]["seed"] == 1 and b["config"]["seed"] == 3
+        for kind in KINDS:
+            v = [r["per_kind"][kind]["fn_p95_kN"][-1] for r in (a, b)]
+            cell = f"{sum(v) / 2:.2f} ({min(v):.2f} to {max(v):.2f})"
+            rows = [line for line in tables.splitlines() if f"| {kind} |" in line and cell in line]
+            assert rows, (name, kind, cell)
+        row = [r for r in csv.DictReader(open(out / "study.csv")) if r["run"] == name and r["kind"] == "AGG"][0]
+        broken = [100.0 * r["per_kind"]["AGG"]["broken"][-1] / r["n_contacts_by_kind"]["AGG"] for r in (a, b)]
+        assert np.isclose(float(row["broken_pct_max"]), max(broken)) and row["damage"] == damage and row["seeds"] == "2"
+    index = (out / "index.md").read_text()
+    for sc in ("isr", "asr-fine", "asr-coarse"):
+        for fig in ("strain", "forces_nodmg", "forces_dmg"):
+            assert f"![{sc}_{fig}.png]({sc}_{fig}.png)" in index and (out / f"{sc}_{fig}.png").stat().st_size > 20000
