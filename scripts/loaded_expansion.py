@@ -13,16 +13,15 @@ where a loaded companion of non-reactive concrete gives the creep to subtract, t
 is the reactive strain minus the non-reactive one, per direction: along the load (z), across it
 (the mean of x and y) and the volume change. Every run starts at --t-start (28 days by default):
 the load, like the laboratory's, acts on cured concrete, and the swelling counted is the part
-after it. One YADE process at a time (-j 1); a run whose
-results.json says 'finished' is kept. Writes DIR/loaded_expansion.png, .csv and .md.
+after it. The runs go through the study runner (swelldem.study: --jobs local Dask workers, or a
+running scheduler's with --scheduler), each into DIR/<run>/ with its log DIR/<run>.log; a run that
+finished with the same settings is kept, a finished run of other settings stops the script before
+any work. Writes DIR/loaded_expansion.png, .csv and .md.
 """
 import argparse
 import csv
-import json
 import os
-import subprocess
 import sys
-import time
 
 import numpy as np
 
@@ -45,6 +44,8 @@ ap.add_argument("--no-damage", action="store_true",
                 help="contacts never break: the model is then linear, and the ASR expansion under any load is the free one "
                      "(superposition): the load's effect is the cracking's")
 ap.add_argument("--out", default="out/loaded", help="output folder")
+ap.add_argument("--jobs", type=int, default=1, help="runs at a time: local Dask workers, one thread each [-]")
+ap.add_argument("--scheduler", default=None, help="address of a running Dask scheduler (tcp://HOST:PORT) instead of local workers")
 # The ADR by default: under a platen load a cracking step of the 12 x 12 x 24 mm prism (5 MPa, day
 # 2800 to 5000) took the ADR 7,350 iterations, while the implicit solver's relaxation phases did
 # not settle its rounds within fallbackIterations, and its fallback relaxation had not finished the
@@ -66,6 +67,7 @@ def common(stress, reactive):
 
 with options.refuse_bad("loaded_expansion.py"):
     options.output_folder("out", args.out)
+    options.integer("jobs", args.jobs, lo=1)
     for s in args.stresses_mpa:
         options.number("stresses_mpa", s, lo=0, lo_incl=True, unit="MPa")
     options.number("t_start", args.t_start, lo=0, unit="day")
@@ -80,32 +82,17 @@ with options.refuse_bad("loaded_expansion.py"):
             t.validate()
             runs[s, reactive] = t
 
-env = dict(os.environ, OMP_NUM_THREADS="1")
+with options.refuse_bad("loaded_expansion.py"):
+    study_runs = [study.Run(run_name(s, reactive), common(s, reactive)) for (s, reactive) in runs]
+    study.check(study_runs, args.out)  # a finished run of other settings in the folder: before any work
+if not study.run_study(study_runs, args.out, jobs=args.jobs, scheduler=args.scheduler, prog="loaded_expansion"):
+    sys.exit("loaded_expansion.py: stopped; call it again with the same options to go on")
 results = {}
 for (s, reactive), test in runs.items():
-    path = os.path.join(test.out, "results.json")
-    done = False
-    if os.path.exists(path):
-        with open(path) as f:
-            old = json.load(f)
-        want = common(s, reactive)
-        differ = {k: (old.get("config", {}).get(k), v) for k, v in want.items()
-                  if k in old.get("config", {}) and old["config"][k] != (list(v) if isinstance(v, tuple) else v)}
-        if differ:
-            sys.exit(f"loaded_expansion.py: {test.out} holds a run of other settings {differ} (found, asked); "
-                     "use another --out or delete it")
-        done = old.get("status") == "finished"
-    if not done:
-        os.makedirs(test.out, exist_ok=True)
-        cmd = [os.path.join(REPO, "scripts", "yade-swelldem"), "-j", "1", "-n", "-x", os.path.join(REPO, "scripts", "swelling_test.py"),
-               *study.command_options(common(s, reactive)), "--out", test.out]
-        t0 = time.time()
-        with open(os.path.join(test.out, "log.txt"), "w") as log:
-            rc = subprocess.call(cmd, stdout=log, stderr=subprocess.STDOUT, env=env)
-        print(f"{run_name(s, reactive)}: exit {rc}, {time.time() - t0:.0f} s", flush=True)
-        if rc != 0:
-            sys.exit(f"loaded_expansion.py: the run {run_name(s, reactive)} failed; see {test.out}/log.txt")
-    results[s, reactive] = report.load_results(path)
+    results[s, reactive] = report.load_results(os.path.join(test.out, "results.json"))
+    if results[s, reactive]["status"] != "finished":
+        sys.exit(f"loaded_expansion.py: the run {run_name(s, reactive)} did not finish ({results[s, reactive]['status'][:200]}); "
+                 f"see {test.out}.log")
 
 
 def strains(res):

@@ -4,25 +4,23 @@ curves on one PNG, their values in a CSV, a Markdown table of the times and stra
 
     /usr/bin/python3 scripts/temperature_study.py --out out/temperature
 
-Runs scripts/swelling_test.py --scenario asr-fine --temperature-c T for each T (one YADE process
-at a time, -j 1; a run whose results.json says 'finished' is not made again), each into DIR/T<T>C/,
+Runs scripts/swelling_test.py --scenario asr-fine --temperature-c T for each T through the study
+runner (swelldem.study: --jobs local Dask workers, or a running scheduler's with --scheduler; a
+run that finished with the same settings is kept), each into DIR/T<T>C/ with its log DIR/T<T>C.log,
 then writes DIR/expansion_vs_temperature.png, DIR/expansion_vs_temperature.csv and
 DIR/expansion_vs_temperature.md. The options are checked before any run.
 """
 import argparse
 import csv
-import json
 import math
 import os
-import subprocess
 import sys
-import time
 
 import numpy as np
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, "py"))
-from swelldem import options, paper, report, scenario  # noqa: E402
+from swelldem import options, paper, report, scenario, study  # noqa: E402
 
 ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
 ap.add_argument("--temperatures-c", type=float, nargs="+", default=[23.0, 38.0, 60.0],
@@ -30,6 +28,8 @@ ap.add_argument("--temperatures-c", type=float, nargs="+", default=[23.0, 38.0, 
 ap.add_argument("--size-mm", type=float, nargs=2, default=(30.0, 30.0), metavar=("W", "H"), help="specimen size [mm]")
 ap.add_argument("--seed", type=int, default=1, help="mesostructure seed (the same specimen at every temperature)")
 ap.add_argument("--out", default="out/temperature", help="output folder")
+ap.add_argument("--jobs", type=int, default=1, help="runs at a time: local Dask workers, one thread each [-]")
+ap.add_argument("--scheduler", default=None, help="address of a running Dask scheduler (tcp://HOST:PORT) instead of local workers")
 scenario.add_solver_argument(ap)
 args = ap.parse_args()
 
@@ -40,6 +40,7 @@ def run_name(T):
 
 with options.refuse_bad("temperature_study.py"):
     options.output_folder("out", args.out)
+    options.integer("jobs", args.jobs, lo=1)
     if len(set(args.temperatures_c)) != len(args.temperatures_c):
         options.bad("temperatures_c", tuple(args.temperatures_c), "distinct temperatures")
     tests = {T: scenario.SwellingTest(scenario="asr-fine", temperature_c=T, size_mm=tuple(args.size_mm), seed=args.seed, solver=args.solver,
@@ -47,26 +48,18 @@ with options.refuse_bad("temperature_study.py"):
     for t in tests.values():
         t.validate()
 
-env = dict(os.environ, OMP_NUM_THREADS="1")
+runs = [study.Run(run_name(T), {"scenario": "asr-fine", "temperature_c": float(T), "size_mm": tuple(args.size_mm), "seed": args.seed,
+                                  "solver": args.solver}) for T in args.temperatures_c]
+with options.refuse_bad("temperature_study.py"):
+    study.check(runs, args.out)  # a finished run of other settings in the folder: before any work
+if not study.run_study(runs, args.out, jobs=args.jobs, scheduler=args.scheduler, prog="temperature_study"):
+    sys.exit("temperature_study.py: stopped; call it again with the same options to go on")
 results = {}
-for T, test in tests.items():
-    path = os.path.join(test.out, "results.json")
-    done = False
-    if os.path.exists(path):
-        with open(path) as f:
-            done = json.load(f).get("status") == "finished"
-    if not done:
-        os.makedirs(test.out, exist_ok=True)
-        cmd = [os.path.join(REPO, "scripts", "yade-swelldem"), "-j", "1", "-n", "-x", os.path.join(REPO, "scripts", "swelling_test.py"),
-               "--scenario", "asr-fine", "--temperature-c", f"{T:g}", "--size-mm", *[f"{v:g}" for v in args.size_mm],
-               "--seed", str(args.seed), "--out", test.out]
-        t0 = time.time()
-        with open(os.path.join(test.out, "log.txt"), "w") as log:
-            rc = subprocess.call(cmd, stdout=log, stderr=subprocess.STDOUT, env=env)
-        print(f"{run_name(T)}: exit {rc}, {time.time() - t0:.0f} s", flush=True)
-        if rc != 0:
-            sys.exit(f"temperature_study.py: the run at {T:g} C failed; see {test.out}/log.txt")
-    results[T] = report.load_results(path)
+for T in args.temperatures_c:
+    results[T] = report.load_results(os.path.join(args.out, run_name(T), "results.json"))
+    if results[T]["status"] != "finished":
+        sys.exit(f"temperature_study.py: the run at {T:g} C did not finish ({results[T]['status'][:200]}); "
+                 f"see {os.path.join(args.out, run_name(T))}.log")
 
 # the kinetics each run used, from the kind's own parameters as results.json records them
 tau_c0, tau_l0, _ = paper.KINETICS["asr"]

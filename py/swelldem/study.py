@@ -373,8 +373,6 @@ def _client(jobs, scheduler):
         from distributed import Client, LocalCluster
     except ImportError:
         sys.exit("study: Dask distributed is missing (Debian python3-distributed); run scripts/setup.sh")
-    import dask
-    dask.config.set({"distributed.worker.daemon": False})  # a worker's task starts a process
     if scheduler:
         return Client(scheduler, timeout=30), None
     cluster = LocalCluster(n_workers=jobs, threads_per_worker=1, processes=True, dashboard_address=None, host="127.0.0.1")
@@ -402,9 +400,23 @@ class Runner:
         if self.cluster is not None:
             self.cluster.close()
         self.client = self.cluster = None
+        if self._main_file is not None:
+            sys.modules["__main__"].__file__ = self._main_file
+            self._main_file = None
+
+    _main_file = None
 
     def connect(self):
         if self.client is None:
+            if not self.scheduler:
+                # A local worker is a process started by multiprocessing's spawn, which runs the
+                # calling script again (as __mp_main__) unless its code sits under a main guard;
+                # the workers need nothing of it (execute() is this module's), so while they may be
+                # started, restarted included, the script is not named to them.
+                main = sys.modules["__main__"]
+                if getattr(main, "__spec__", None) is None and getattr(main, "__file__", None):
+                    self._main_file = main.__file__
+                    del main.__file__
             self.client, self.cluster = _client(self.jobs, self.scheduler)
         return self.client
 

@@ -55,4 +55,4 @@ def test_a_folder_of_other_settings_is_refused(study):
     proc = subprocess.run(["/usr/bin/python3", SCRIPT, "--out", str(study), "--stresses-mpa", "0", "5", "--size-mm", "8", "8", "8",
                            "--aggregate-area-fraction", "0", "--steps-per-decade", "1"],
                           capture_output=True, text=True, timeout=300, env=dict(os.environ, SWELLDEM_BUILD_DIR=build_dir()))
-    assert proc.returncode != 0 and "holds a run of other settings" in proc.stderr and "'damage': (False, True)" in proc.stderr, proc.stderr
+    assert proc.returncode == 2 and "a new folder or one of a study with the same settings" in proc.stderr and "damage False (asked True)" in proc.stderr, proc.stderr
