@@ -3,7 +3,7 @@
 cannot reproduce): expansion along and across the load and the volumetric expansion against the
 stress, beside the trend Multon and Toutlemonde measured on loaded cylinders.
 
-    /usr/bin/python3 scripts/loaded_expansion.py --out out/loaded [--stresses-mpa 0 5 10]
+    /usr/bin/python3 scripts/loaded_expansion.py --out out/loaded [--stresses-mpa 0 1 2.5]
         [--size-mm 12 12 24] [--steps-per-decade 4] [--t-start 28] [--seed 1] [--solver adr|implicit] (default adr)
 
 Each stress S runs scripts/swelling_test.py --dim 3 --scenario asr-fine --behaviour viscoelastic
@@ -30,7 +30,9 @@ sys.path.insert(0, os.path.join(REPO, "py"))
 from swelldem import options, report, scenario, study  # noqa: E402
 
 ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-ap.add_argument("--stresses-mpa", type=float, nargs="+", default=[0.0, 5.0, 10.0],
+# 0, 1 and 2.5 MPa: the prism's compressive strength at the paper's contact values is about 5 to
+# 7.5 MPa (docs/scenarios.md), below the laboratory's 10 and 20 MPa
+ap.add_argument("--stresses-mpa", type=float, nargs="+", default=[0.0, 1.0, 2.5],
                 help="uniaxial compressive stresses on the z faces, >= 0 (compression) [MPa]")
 ap.add_argument("--size-mm", type=float, nargs=3, default=(12.0, 12.0, 24.0), metavar=("W", "H", "D"),
                 help="prism size; the load acts along D (z) [mm]")
