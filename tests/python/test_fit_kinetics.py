@@ -3,8 +3,8 @@
 curve made by the model with tau_c, tau_L and eps_inf set away from the paper's values (40 d,
 120 d, 1500e-6 against 2500 d, 5000 d, 1000e-6), with 2 % noise (of its largest value, seeded), is
 fitted back on two local Dask workers: each set value lies in the fit's stated 95 % interval, and
-the residuals' RMS is the noise's. Curves the model cannot follow, and bad data, are refused
-before any run."""
+the residuals' RMS is the noise's. A two-stage curve, which one reaction's kinetics cannot follow,
+is reported as a poor fit; curves that can be told bad before a run are refused before any."""
 import json
 import os
 import subprocess
@@ -93,3 +93,19 @@ def test_curves_the_model_cannot_follow_are_refused_before_any_run(tmp_path, tex
     p = fit(data, out, timeout=120)
     assert p.returncode == 2 and p.stderr.startswith("fit_kinetics.py: ") and needle in p.stderr, p.stderr
     assert not out.exists()
+
+
+def test_a_curve_the_model_cannot_follow_is_reported_as_a_poor_fit(tmp_path):
+    """Two swelling stages (two Larive sigmoids, 700e-6 each, at 50 and 650 days): one reaction's
+    kinetics cannot follow it, and the fit says so (measured RMS 20 % of the largest expansion)."""
+    days = np.array([7, 14, 28, 56, 91, 120, 150, 180, 240, 300, 400, 500, 600, 700, 800, 1000.0])
+    larive = lambda t, tc, tl: (1 - np.exp(-t / tc)) / (1 + np.exp(-(t - tl) / tc))  # noqa: E731
+    y = 700 * larive(days, 15, 50) + 700 * larive(days, 30, 650)
+    data = tmp_path / "two_stages.csv"
+    data.write_text("day, expansion [1e-6]\n" + "".join(f"{a:g},{b:.2f}\n" for a, b in zip(days, y)))
+    out = tmp_path / "fit"
+    p = fit(data, out, "--size-mm", "16", "16", "--steps-per-decade", "2", "--jobs", "2")
+    assert p.returncode == 1 and "fit_kinetics: poor fit (seeds [1])" in p.stdout, p.stdout[-2000:] + p.stderr[-2000:]
+    rec = json.loads((out / "fit.json").read_text())
+    assert rec["quality"] == "poor" and rec["fits"][0]["rms_relative"] > 0.1, rec["fits"][0]["rms_relative"]
+    assert "Poor fit" in (out / "fit.md").read_text()
