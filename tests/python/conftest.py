@@ -21,6 +21,16 @@ def script_stderr(stderr):
     return [line for line in stderr.splitlines() if line.strip() and not line.startswith(YADE_STARTUP)]
 
 
+def without_keys(v, keys):
+    """v without the entries named in `keys`, at any depth (dicts and lists): a results dict less
+    what differs between two runs of the same physics (the clock, the folder)."""
+    if isinstance(v, dict):
+        return {k: without_keys(x, keys) for k, x in v.items() if k not in keys}
+    if isinstance(v, list):
+        return [without_keys(x, keys) for x in v]
+    return v
+
+
 def build_dir():
     return os.path.abspath(os.environ.get("SWELLDEM_BUILD_DIR") or os.path.join(REPO, "build"))
 

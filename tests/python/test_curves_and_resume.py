@@ -16,7 +16,7 @@ import time
 import numpy as np
 import pytest
 
-from conftest import LAUNCHER, REPO, build_dir, script_stderr
+from conftest import LAUNCHER, REPO, build_dir, script_stderr, without_keys
 
 SCRIPT = os.path.join(REPO, "scripts", "swelling_test.py")
 ARGS = ("--scenario", "isr", "--size-mm", "12", "12", "--seed", "1", "--steps-per-decade", "5", "--save-state")
@@ -36,11 +36,7 @@ def swelling_test(*args, check=True):
 
 def physical(v):
     """v without the NOT_PHYSICAL keys, at any depth."""
-    if isinstance(v, dict):
-        return {k: physical(x) for k, x in v.items() if k not in NOT_PHYSICAL}
-    if isinstance(v, list):
-        return [physical(x) for x in v]
-    return v
+    return without_keys(v, NOT_PHYSICAL)
 
 
 def results(out):

@@ -15,7 +15,7 @@ import time
 
 import pytest
 
-from conftest import REPO, build_dir
+from conftest import REPO, build_dir, without_keys
 
 sys.path.insert(0, os.path.join(REPO, "py"))
 from swelldem import scenario, study  # noqa: E402
@@ -41,21 +41,13 @@ def env():
     return {**os.environ, "SWELLDEM_BUILD_DIR": build_dir(), "PYTHONPATH": os.path.join(REPO, "py")}
 
 
-def without_clock(v):
-    if isinstance(v, dict):
-        return {k: without_clock(x) for k, x in v.items() if k not in CLOCK}
-    if isinstance(v, list):
-        return [without_clock(x) for x in v]
-    return v
-
-
 def results(folder):
     with open(os.path.join(folder, "results.json")) as f:
         res = json.load(f)
     res["config"].pop("out")
     for k in ("id", "d.id"):  # YADE's run id: the start time and the process id
         res["yade_tags"].pop(k, None)
-    return without_clock(res)
+    return without_keys(res, CLOCK)
 
 
 def call(table, out, *args, timeout=900):
