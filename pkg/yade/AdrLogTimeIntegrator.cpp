@@ -19,6 +19,8 @@ void AdrLogTimeIntegrator::action()
 		if (starting && !times.empty()) relaxation.start(scene, nDim);
 		return;
 	}
+	// the law reads this at every contact of the next iteration; set here, it also holds after O.load
+	law2->breaksAtEquilibrium = !breakInIterations;
 	const TrackHeldBodiesAtExit track { this };
 	const Balance b = measureBalance();
 	// A break leaves kn, ks (and so the Gershgorin bound) as they are: only new or lost contacts

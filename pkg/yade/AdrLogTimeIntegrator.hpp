@@ -13,6 +13,10 @@ public:
 	X(Real, massSafety, DynamicRelaxation::kDefaultMassSafety, swelldem_attr::Setting,                                                                     \
 	  "Factor on the Gershgorin bound of the fictitious masses (>= 1; at 1 an isolated pair of discs never settles) [-]")                                \
 	X(Real, maxDamping, DynamicRelaxation::kDefaultMaxDamping, swelldem_attr::Setting, "Upper clamp of the ADR damping c dt (< 2) [-]")                                                 \
+	X(bool, breakInIterations, false, swelldem_attr::Setting,                                                                                            \
+	  "Break an overloaded contact at the iteration it is overloaded, in the relaxation's transients, as a dynamic-relaxation code does "      \
+	  "unless told otherwise (the paper's ADR updates its masses when the stiffness changes, 'for example ... to damage'); false: every "   \
+	  "break at equilibrium (breakOneAtATime applies then). A reading of the paper to measure, not a default (docs/scenarios.md) [-]")       \
 	X(Real, damping, 0.0, swelldem_attr::Result, "ADR damping c dt of the last iteration [-]")                                                         \
 	X(DynamicRelaxation, relaxation, DynamicRelaxation(), swelldem_attr::Internal, "Fictitious masses, previous residual and origin of the ADR [-]")
 	SWELLDEM_CLASS(AdrLogTimeIntegrator, LogTimeSolver,
