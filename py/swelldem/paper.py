@@ -52,6 +52,33 @@ SCENARIOS = {
 }
 
 
+#: Section 3.5.1's gel pockets of 'asr-coarse', read from the paper's two sentences on them:
+#: "swelling due to ASR-coarse agg. type reactions originates from small areas of the aggregate,
+#: gel pockets (inside and near the boundary)" (3.1) and "only 10% of the coarse aggregates
+#: contacts had swelling" (3.5.1). The text leaves open which contacts those are; each reading is
+#: a --gel-pockets choice (swelldem.meso.gel_pockets draws them), with what it takes from the text.
+#: The default, 'rim' with the 'aggregate' displacement, is the reading that matches the
+#: paper's ASR-coarse rows best (docs/scenarios.md, "Readings of the paper's open choices").
+GEL_POCKET_READINGS = {
+    "single": "contacts drawn one by one, at random, among all aggregate (AGG) contacts: '10% of the coarse "
+              "aggregates contacts'",
+    "clustered": "pockets of neighbouring AGG contacts (those within gel_pocket_radius_mm of a drawn centre), "
+                 "drawn until they hold the fraction: 'small areas of the aggregate, gel pockets'",
+    "rim": "contacts drawn one by one among the AGG contacts of the aggregate's outer particle layer (a "
+           "particle with an ITZ contact): 'near the boundary'",
+    "with-itz": "contacts drawn one by one among the AGG and the ITZ contacts: 'coarse aggregates contacts' "
+                "read as every contact of an aggregate particle, its interface included",
+}
+#: The pockets' ultimate swelling displacement d_inf, which the paper's Table 3.2 gives for mortar
+#: and ITZ only: 'rule', the same eps_inf x 2 R_mean (Table 3.2's rule); 'aggregate', that value over
+#: the gel fraction, so that the aggregate as a whole would swell freely by eps_inf (the stiffness-
+#: weighted mean of the contacts' swelling strains d/L is the network's free strain).
+GEL_DISPLACEMENT_READINGS = {
+    "rule": "eps_inf x 2 R_mean, Table 3.2's rule for mortar and ITZ",
+    "aggregate": "eps_inf x 2 R_mean / gel_fraction: the aggregate as a whole swells freely by eps_inf",
+}
+
+
 def larive_xi(t, kinetics="isr"):
     """Larive's sigmoid xi(t) = (1 - e^(-t/tau_c)) / (1 + e^(-(t - tau_L)/tau_c)) [-] of `kinetics`
     (a KINETICS key), t in days (scalar or array). Evaluated in numpy, so it is a reference

@@ -51,12 +51,17 @@ RENAMED_KEYS = {"adr_iterations": "iterations", "adr_iterations_per_step": "iter
 def current_form(res):
     """A results dict in today's form, whatever version of swelldem wrote it: the keys of
     RENAMED_KEYS under their present names, and without the flat copies '<series>_<KIND>' (e.g.
-    broken_ITZ) of the per_kind series that earlier files held beside per_kind. What a file does
+    broken_ITZ) of the per_kind series that earlier files held beside per_kind; a config without a
+    field of scenario.VALUE_BEFORE_FIELD gets the value the run had. What a file does
     not hold (e.g. 'kinds' in files written before it was recorded) stays absent. Changes `res`
     and returns it."""
     for old, new in RENAMED_KEYS.items():
         if old in res and new not in res:
             res[new] = res.pop(old)
+    if isinstance(res.get("config"), dict) and res["config"]:
+        from .scenario import VALUE_BEFORE_FIELD  # a config written before a field existed: what the run did
+        for name, value in VALUE_BEFORE_FIELD.items():
+            res["config"].setdefault(name, value)
     for name, series in (res.get("per_kind") or {}).items():
         for key in series if isinstance(series, dict) else ():
             res.pop(f"{key}_{name}", None)
@@ -175,8 +180,8 @@ def run_key(res):
 
 #: Settings of a swelling test that change the physics away from the paper's study when set away
 #: from their default (the scenario's); the solver and the outputs are not conditions.
-_PARAMETER_SETTINGS = ("eps_inf", "gel_fraction", "shear_ratio", "aggregate_young", "strength_scale",
-                       "kelvin_units_per_decade", "parameters", "aggregate_area_fraction", "t_start_days", "t_end_days")
+_PARAMETER_SETTINGS = ("eps_inf", "gel_fraction", "gel_pockets", "gel_pocket_radius_mm", "gel_displacement", "shear_ratio",
+                       "aggregate_young", "strength_scale", "kelvin_units_per_decade", "parameters", "aggregate_area_fraction", "t_start_days", "t_end_days")
 
 
 def run_conditions(res):
@@ -439,7 +444,12 @@ def _free_swelling_curve(ax, res, t_last, specimen_max):
         at = f"under the run's temperature history ($\\tau_c$ {tau_c:g} d, $\\tau_L$ {tau_l:g} d at {T0 - 273.15:g} C)"
     else:
         at = f"$\\tau_c$ {tau_c:g} d, $\\tau_L$ {tau_l:g} d"
-    phase = "gel pockets" if res["scenario"] == "asr-coarse" else " and ".join(swelling_kinds(res)) + " contacts"
+    if res["scenario"] != "asr-coarse":
+        phase = " and ".join(swelling_kinds(res)) + " contacts"
+    elif cfg.get("gel_displacement", "rule") == "aggregate":  # the pockets' d set so that the aggregate swells by eps_inf
+        phase = "reactive aggregate, gel pockets at 2 $R_{mean} \\varepsilon_\\infty$ / gel fraction"
+    else:
+        phase = "gel pockets"
     apart = specimen_max == specimen_max and specimen_max < 0.2 * free.max()
     fax = ax.twinx() if apart else ax
     fax.semilogx(tt, free, "--", color="k", lw=1,

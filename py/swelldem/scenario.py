@@ -55,6 +55,11 @@ def _field(default, help, unit=None, flag=None, choices=None, sets=None, factory
     return field(default_factory=factory, metadata=meta) if factory else field(default=default, metadata=meta)
 
 
+#: The value a run recorded without a field had, for the fields whose default is not what swelldem did
+#: before the field existed: results.json's config of such a run reads as this value, not the default.
+VALUE_BEFORE_FIELD = {"gel_pockets": "single", "gel_displacement": "rule"}
+
+
 @dataclass
 class SwellingTest:
     """One swelling test: every parameter with its unit and meaning (also the command line of
@@ -83,6 +88,16 @@ class SwellingTest:
                                       "a comment)", sets="ContactKind.temperatureDays, temperatures")
     eps_inf: float = _field(paper.EPS_INF, "ultimate free swelling strain of the swelling material (d_inf = eps_inf x 2 R_mean)", unit="-")
     gel_fraction: float = _field(0.1, "asr-coarse: share of the aggregate contacts that swell (gel pockets)", unit="-")
+    gel_pockets: str = _field("rim", "asr-coarse: which contacts are the gel pockets, a reading of the paper's \"10% of "
+                                        "the coarse aggregates contacts\" and \"small areas of the aggregate, gel pockets "
+                                        "(inside and near the boundary)\": " + "; ".join(
+                                            f"{k}, {v}" for k, v in paper.GEL_POCKET_READINGS.items()),
+                              choices=tuple(paper.GEL_POCKET_READINGS))
+    gel_pocket_radius_mm: float = _field(1.0, "asr-coarse, gel_pockets clustered: radius of a pocket around its centre", unit="mm")
+    gel_displacement: str = _field("aggregate", "asr-coarse: the pockets' ultimate swelling displacement, which the paper's Table 3.2 "
+                                           "states for mortar and ITZ only: " + "; ".join(
+                                               f"{k}, {v}" for k, v in paper.GEL_DISPLACEMENT_READINGS.items()),
+                                   choices=tuple(paper.GEL_DISPLACEMENT_READINGS))
     shear_ratio: float = _field(0.3, "ks / kn of every contact", unit="-", sets="ContactKind.shearRatio")
     aggregate_young: float = _field(paper.AGGREGATE_YOUNG, "contact modulus of aggregate contacts", unit="Pa", sets="ContactKind(AGG).young")
     strength_scale: float = _field(1.0, "factor on the paper's Table 3.5 tensile strengths", unit="-")
@@ -150,6 +165,11 @@ class SwellingTest:
                            allowed=f"0 (the paper's end) or t_start_days = {self.t_start_days:g} < t_end_days < inf [day]")
         options.number("eps_inf", self.eps_inf, lo=0, lo_incl=True, allowed="0 <= eps_inf < inf [-]")
         options.number("gel_fraction", self.gel_fraction, lo=0, hi=1, lo_incl=True, hi_incl=True)
+        options.choice("gel_pockets", self.gel_pockets, tuple(paper.GEL_POCKET_READINGS))
+        options.number("gel_pocket_radius_mm", self.gel_pocket_radius_mm, lo=0, unit="mm")
+        options.choice("gel_displacement", self.gel_displacement, tuple(paper.GEL_DISPLACEMENT_READINGS))
+        if self.gel_displacement == "aggregate" and self.scenario == "asr-coarse" and not self.gel_fraction > 0:
+            _bad("gel_fraction", self.gel_fraction, "0 < gel_fraction <= 1 with gel_displacement aggregate (d = d_rule / gel_fraction)")
         options.number("shear_ratio", self.shear_ratio, lo=0)
         options.number("aggregate_young", self.aggregate_young, lo=0, unit="Pa")
         options.number("strength_scale", self.strength_scale, lo=0)
@@ -323,7 +343,7 @@ def add_arguments(parser):
         unit = f" [{m['unit']}]" if m["unit"] and m["unit"] != "-" else ""
         sets = f" (sets {m['sets']})" if m["sets"] else ""
         default = f.default_factory() if f.default is MISSING else f.default
-        help_text = m["help"] + unit + sets
+        help_text = (m["help"] + unit + sets).replace("%", "%%")  # argparse formats help with %
         if f.type is bool or isinstance(default, bool):
             if default:
                 parser.add_argument("--no-" + f.name.replace("_", "-"), dest=f.name, action="store_false", help=help_text)
@@ -523,6 +543,12 @@ def calibrate_modulus_factor(shear_ratio=0.3, seed=11, size_mm=15.0, strain=1e-4
             "shear_ratio": shear_ratio, "strain": strain, "adr_iterations": solver.totalIterations}
 
 
+def gel_kinds(test):
+    """The kinds the gel pockets of an asr-coarse test are drawn from: AGG, and ITZ for the
+    'with-itz' reading."""
+    return ("AGG", "ITZ") if test.gel_pockets == "with-itz" else ("AGG",)
+
+
 def make_kinds(test):
     """The three ContactKind objects of a test with the paper's values as contact values, the
     test's factors and its kind_params; each constructor validates its values. Swelling kinds get
@@ -533,7 +559,7 @@ def make_kinds(test):
     temperature = {} if history is None else {"temperatureDays": history[0], "temperatures": history[1]}
     kinds = {}
     for name in paper.KIND_NAMES:
-        swells = name in sc["swelling_kinds"] or (test.scenario == "asr-coarse" and name == "AGG")
+        swells = name in sc["swelling_kinds"] or (test.scenario == "asr-coarse" and name in gel_kinds(test))
         common = dict(shear_ratio=test.shear_ratio, kinetics=sc["kinetics"], damage=test.damage,
                       tensile_strength=paper.TENSILE_STRENGTH[name] * test.strength_scale, swelling=swells)
         given = {**temperature, **test.kind_params.get(name, {})}
@@ -558,6 +584,66 @@ def scale_kinds(kinds, beta, kind_params):
         for q in ("q1", "q2", "q3", "q4"):
             if q not in given:
                 setattr(k, q, beta * getattr(k, q))
+
+
+def gel_displacement(test, d_rule):
+    """The gel pockets' ultimate swelling displacement [m] of an asr-coarse test from Table 3.2's
+    d = eps_inf x 2 R_mean (d_rule), under the test's gel_displacement reading."""
+    from .meso import gel_pockets
+    return gel_pockets.pocket_displacement(d_rule, test.gel_displacement, test.gel_fraction)
+
+
+def _quantiles(values):
+    """The 5, 50 and 95 % quantiles of `values` (NaN for none), as the gel-pocket record holds them."""
+    import numpy as np
+    return np.quantile(values, [0.05, 0.5, 0.95]).tolist() if len(values) else [float("nan")] * 3
+
+
+def gel_pocket_record(test, built):
+    """results.json's 'gel_pockets' of an asr-coarse run before it runs: the reading, the pockets'
+    count and d_inf [m], the quantiles (5 / 50 / 95 %) of their fully restrained forces -E_c A/L x d
+    [kN] (swelldem.meso.gel_pockets), and the force balance's bound on the 5 % quantile of the AGG
+    forces [kN] with the whole swelling (xi = 1) and with the run's xi(t_end) - xi(t_start)."""
+    import numpy as np
+    from .meso import gel_pockets
+    a, gel = built.assembly, np.asarray(built.gel, dtype=np.int64)
+    d = gel_displacement(test, built.d_inf)
+    k = built.kinds["AGG"]
+    history = test.temperature_history() or ((), ())
+    t_end = built.solver.tEnd
+    xi_start, xi_end = paper.larive_xi_under([test.t_start_days, t_end], k.tauC, k.tauL, *history)
+    dxi = float(xi_end - xi_start)
+    # ITZ pockets (with-itz) at the ITZ's modulus at the end of the run, its aging-elastic value
+    young = {paper.AGG: k.young, paper.ITZ: 1.0 / built.kinds["ITZ"].compliance(t_end + 0.01, t_end)}
+    full = gel_pockets.restrained_forces(a, gel, d, young)
+    return {"reading": test.gel_pockets, "displacement": test.gel_displacement, "radius_mm": test.gel_pocket_radius_mm,
+            "n": int(len(gel)), "n_agg": int((a.kind[gel] == paper.AGG).sum()), "n_itz": int((a.kind[gel] == paper.ITZ).sum()),
+            "d_inf_m": d, "xi_run": dxi, "restrained_kN_q05_q50_q95": _quantiles(full / 1e3),
+            "agg_p05_bound_kN": gel_pockets.quantile_bound(a, gel, full) / 1e3,
+            "agg_p05_bound_run_kN": gel_pockets.quantile_bound(a, gel, full * dxi) / 1e3,
+            "restrained_kN": (full / 1e3).tolist()}
+
+
+def gel_pocket_forces(record, built):
+    """Adds to a gel-pocket record the pockets' final normal forces: their quantiles [kN] and the
+    restraint degree F / (restrained force x the run's xi) of the intact AGG pockets (5 / 50 / 95 %;
+    1: fully restrained, 0: free)."""
+    import numpy as np
+    from .plugin import require
+    O = require("swelldem.scenario.gel_pocket_forces")[0].Omega()
+    gel = np.asarray(built.gel, dtype=np.int64)
+    fn, intact = [], []
+    for c in gel:
+        i, j = built.scene.contacts[int(c)]
+        I = O.interactions[int(i), int(j)]
+        fn.append(I.phys.Fn if I is not None and I.isReal else 0.0)
+        intact.append(bool(I is not None and I.isReal and not I.phys.broken))
+    fn, intact = np.array(fn), np.array(intact, dtype=bool)
+    full = np.asarray(record["restrained_kN"]) * 1e3 * record["xi_run"]
+    sel = intact & (built.assembly.kind[gel] == paper.AGG) & (full < 0)
+    record["fn_kN_q05_q50_q95"] = _quantiles(fn / 1e3)
+    record["restraint_q05_q50_q95"] = _quantiles(fn[sel] / full[sel])
+    return record
 
 
 def set_swelling(test, kinds, d_inf):
@@ -732,7 +818,8 @@ def build(test, prepared=None, extra_times=(), assembly=None, reset=True, t0=Non
           f"{time.time() - t0:.1f} s", flush=True)
     gel = []
     if test.scenario == "asr-coarse":
-        gel = dem.set_gel_pockets(ys, assembly, test.gel_fraction, d_inf, test.seed)
+        gel = dem.set_gel_pockets(ys, assembly, test.gel_fraction, gel_displacement(test, d_inf), test.seed,
+                                  test.gel_pockets, test.gel_pocket_radius_mm * 1e-3)
     bars = None
     if lay is not None:
         from .dem import rebar
@@ -839,6 +926,12 @@ def run(test, prepared=None, extra_times=(), after_step=None, resume=False):
            "per_kind": {n: {"fn_p05_kN": [], "fn_p95_kN": [], "broken": [], "born_broken": []} for n in paper.KIND_NAMES},
            "temperature": temperature_record(test, kinds),
            "status": "running", "wall_s": 0.0, "yade_tags": batch_tags()}
+    if len(gel):
+        res["gel_pockets"] = gel_pocket_record(test, built)
+        g = res["gel_pockets"]
+        print(f"swelldem: gel pockets ({g['reading']}, d {g['displacement']}): {g['n']} contacts, d_inf {g['d_inf_m']:.3g} m, "
+              f"fully restrained force {g['restrained_kN_q05_q50_q95'][1]:.1f} kN (median); bound on the AGG 5 % quantile "
+              f"{g['agg_p05_bound_run_kN']:.1f} kN at the run's end", flush=True)
     if test.dim == 3:  # a box: the z strain and the volume change instead of the area change
         del res["swelling_strain_area"]
         res.update(dim=3, swelling_strain_z=[], swelling_strain_volume=[], platen_stress_z_Pa=[], platen_disp_z_m=[])
@@ -887,6 +980,8 @@ def run(test, prepared=None, extra_times=(), after_step=None, resume=False):
         res["wall_s"] = time.time() - t0
         for sig, handler in handlers.items():
             signal.signal(sig, handler)
+    if len(gel):
+        gel_pocket_forces(res["gel_pockets"], built)
     rec.export_vtk()
     if test.save_state:
         recorder.save_scene(os.path.join(test.out, recorder.FINAL_FILE))

@@ -126,7 +126,8 @@ import sys
 sys.path.insert(0, sys.argv[1])
 from swelldem import scenario
 res = scenario.run(scenario.SwellingTest(scenario='asr-coarse', behaviour='elastic', damage=False, size_mm=(12, 12),
-                                         steps_per_decade=3, gel_fraction=float(sys.argv[2]), out=sys.argv[3]))
+                                         steps_per_decade=3, gel_fraction=float(sys.argv[2]), gel_pockets='single',
+                                         gel_displacement='rule', out=sys.argv[3]))
 # what the scene holds, read from the interactions themselves, not from what the scenario returned
 def d_inf(p):
     return p.swellDispInf if p.swellDispInf >= 0 else p.kind.swellDispInf
@@ -140,7 +141,7 @@ dump({'strain': [res['swelling_strain_x'][-1], res['swelling_strain_y'][-1]], 'd
 
 def test_asr_coarse_swells_only_gel_pockets(yade_run, tmp_path):
     """ASR with reactive coarse aggregate: the swelling comes from gel pockets only, a seeded 10 %
-    of the aggregate contacts. Read from the scene: exactly round(0.1 n_AGG) aggregate contacts
+    of the aggregate contacts (drawn one by one, at Table 3.2's d: the readings 'single' and 'rule'). Read from the scene: exactly round(0.1 n_AGG) aggregate contacts
     swell, each with the scenario's d_inf, and no mortar or ITZ contact swells; without gel pockets
     the specimen does not swell at all, with them it swells far less than swelling mortar would."""
     from conftest import REPO
@@ -307,7 +308,9 @@ def test_implicit_solver_agrees_with_the_adr_at_a_tight_tolerance(tmp_path, scen
     """The same swelling test (12 mm, viscoelastic, no damage) with the implicit solver and with the
     ADR at tolerance 1e-8: the final strains and every step's per-kind force quantiles agree to
     0.1 % of the kind's force range (measured at 40 mm: 0.074 % at most, docs/performance.md 1b)."""
-    args = ("--scenario", scenario, "--behaviour", "viscoelastic", "--no-damage")
+    # ASR-coarse at the reading of the measurement (pockets one by one at Table 3.2's d)
+    args = ("--scenario", scenario, "--behaviour", "viscoelastic", "--no-damage") + (
+        ("--gel-pockets", "single", "--gel-displacement", "rule") if scenario == "asr-coarse" else ())
     imp, _ = swelling_test(tmp_path / "implicit", *args, "--solver", "implicit")
     adr, _ = swelling_test(tmp_path / "adr", *args, "--solver", "adr", "--tolerance", "1e-8")
     assert imp["solver"] == "implicit" and imp["status"] == "finished" and imp["tolerance"] == 1e-10

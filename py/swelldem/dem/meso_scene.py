@@ -17,8 +17,8 @@ from typing import Dict, List
 
 import numpy as np
 
-from ..meso.assembly import AGG, AGGREGATE_MATERIAL, KIND_NAMES, MORTAR_MATERIAL
-from ..meso.generator import choose_contacts
+from ..meso.assembly import AGG, AGGREGATE_MATERIAL, ITZ, KIND_NAMES, MORTAR_MATERIAL
+from ..meso import gel_pockets
 from ..paper import KIND_IDS
 from . import scene as sc
 
@@ -196,13 +196,17 @@ def set_contact_swelling(yscene, contact_indices, d_inf_m):
     return int(idx.size)
 
 
-def set_gel_pockets(yscene, assembly, fraction, d_inf_m, seed, kind=AGG):
-    """The paper's ASR with reactive coarse aggregate: a seeded random `fraction` of the contacts of
-    `kind` (default AGG) swell with d_inf_m [m], all other contacts of that kind get d_inf = 0.
-    The kind needs ContactKind.swelling = True (its swellDispInf is then irrelevant for the
-    assembly's contacts; contacts made later use it). Returns the chosen contact indices."""
-    chosen = choose_contacts(assembly, kind, fraction, seed)
-    all_of_kind = assembly.contacts_of_kind(kind)
-    set_contact_swelling(yscene, np.setdiff1d(all_of_kind, chosen), 0.0)
+def set_gel_pockets(yscene, assembly, fraction, d_inf_m, seed, reading="single", radius_m=1e-3):
+    """The paper's ASR with reactive coarse aggregate: the gel pockets of one reading
+    (swelldem.meso.gel_pockets.choose: 'single', 'clustered', 'rim', 'with-itz') swell with d_inf_m
+    [m]; every other contact of the kinds the pockets are drawn from (AGG, and ITZ for 'with-itz')
+    gets d_inf = 0. Those kinds need ContactKind.swelling = True (their swellDispInf is then
+    irrelevant for the assembly's contacts; contacts made later use it). Returns the chosen
+    contact indices."""
+    chosen = gel_pockets.choose(assembly, reading, fraction, seed, radius_m)
+    pool = assembly.contacts_of_kind(AGG)
+    if reading == "with-itz":
+        pool = np.union1d(pool, assembly.contacts_of_kind(ITZ))
+    set_contact_swelling(yscene, np.setdiff1d(pool, chosen), 0.0)
     set_contact_swelling(yscene, chosen, d_inf_m)
     return chosen
