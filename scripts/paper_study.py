@@ -269,9 +269,7 @@ def main(argv):
     completed = study.run_study(runs_of(a), a.out, jobs=a.jobs, scheduler=a.scheduler, prog="paper_study")
     all_done = report_study(a) if len(a.seeds) == 1 else report_seeds(a)
     print(f"paper_study: tables and figures in {a.out}/index.md")
-    if not completed:
-        sys.exit("paper_study.py: stopped; call it again with the same options to go on")
-    sys.exit(0 if all_done else 1)
+    study.end("paper_study.py", completed, all_done)
 
 
 if __name__ == "__main__":

@@ -76,9 +76,7 @@ def main(argv):
     write_summary(a.out, runs, a.seeds)
     states = study.results_state(a.out, runs)
     print(f"study.py: {sum(s == 'finished' for s in states.values())} of {len(runs)} runs finished; {a.out}/summary.md, runs.md")
-    if not completed:
-        sys.exit("study.py: stopped; call it again with the same options to go on")
-    sys.exit(0 if all(s == "finished" for s in states.values()) else 1)
+    study.end("study.py", completed, all(s == "finished" for s in states.values()))
 
 
 if __name__ == "__main__":

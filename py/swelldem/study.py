@@ -120,8 +120,10 @@ def expected_config(run, out):
 
 def differing(cfg, want):
     """{field: (recorded, wanted)} of a run's recorded config against the study's; a field the
-    record lacks (a run made by an older swelldem) counts as its default."""
-    defaults = _json(_field_defaults())
+    record lacks (a run made by an older swelldem) counts as what that swelldem did: its default,
+    or scenario.VALUE_BEFORE_FIELD."""
+    from .scenario import VALUE_BEFORE_FIELD
+    defaults = {**_json(_field_defaults()), **VALUE_BEFORE_FIELD}
     return {k: (cfg.get(k, defaults.get(k)), v) for k, v in want.items() if cfg.get(k, defaults.get(k)) != v}
 
 
@@ -424,6 +426,14 @@ class Runner:
         """Runs the runs into the folder `out` (check() first); True when every run was done
         (kept or made, whatever its status), False when stopped by a signal."""
         return _run_batch(self, runs, out, quiet)
+
+
+def end(prog, completed, all_finished):
+    """Ends a study script: a stopped study (completed False) says how to go on and exits with status
+    1; otherwise status 0 when every run finished, 1 when one did not."""
+    if not completed:
+        sys.exit(f"{prog}: stopped; call it again with the same options to go on")
+    sys.exit(0 if all_finished else 1)
 
 
 def run_study(runs, out, jobs=1, scheduler=None, prog="study"):
