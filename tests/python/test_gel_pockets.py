@@ -113,6 +113,17 @@ def test_bad_readings_are_refused(kw, needle):
     assert needle in str(e.value)
 
 
+def test_a_fraction_beyond_the_rims_is_refused(assembly):
+    rim = gel_pockets.rim_contacts(assembly)
+    share = len(rim) / (assembly.kind == meso.AGG).sum()
+    assert 0 < share < 0.9  # the outer layer of a 2 mm-particle aggregate: about half of its contacts
+    assert len(gel_pockets.choose(assembly, "rim", share - 0.01, seed=1)) == gel_pockets.count(assembly, "rim", share - 0.01)
+    with pytest.raises(ValueError) as e:
+        gel_pockets.choose(assembly, "rim", 0.9, seed=1)
+    assert f"gel_fraction = 0.9 is out of range for gel_pockets 'rim'" in str(e.value)
+    assert f"allowed: gel_fraction <= {share:.3f}" in str(e.value)
+
+
 def test_bad_reading_on_the_command_line_before_work(tmp_path):
     out = tmp_path / "run"
     proc = subprocess.run([os.path.join(REPO, "scripts", "yade-swelldem"), "-n", "-x", os.path.join(REPO, "scripts", "swelling_test.py"),

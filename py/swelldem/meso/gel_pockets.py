@@ -75,8 +75,9 @@ def choose(assembly, reading, fraction, seed, radius_m=1e-3):
     if reading == "rim":
         pool = rim_contacts(assembly)
         if k > len(pool):
-            raise ValueError(f"swelldem.meso.gel_pockets: the aggregates' rims hold {len(pool)} AGG contacts, fewer than the "
-                             f"{k} gel pockets of fraction {fraction}; allowed: fraction <= {len(pool) / max(1, (assembly.kind == AGG).sum()):.3f}")
+            raise ValueError(f"swelldem.meso.gel_pockets: gel_fraction = {fraction} is out of range for gel_pockets 'rim': the "
+                             f"aggregates' rims of this mesostructure hold {len(pool)} AGG contacts, fewer than its {k} gel pockets; "
+                             f"allowed: gel_fraction <= {len(pool) / max(1, (assembly.kind == AGG).sum()):.3f}")
         return np.sort(rng.choice(pool, size=k, replace=False)) if k else np.zeros(0, dtype=np.int64)
     if not (np.isfinite(radius_m) and radius_m > 0):
         raise ValueError(f"swelldem.meso.gel_pockets: radius_m = {radius_m} is out of range; allowed: 0 < radius_m < inf [m]")
