@@ -958,8 +958,8 @@ def run(test, prepared=None, extra_times=(), after_step=None, resume=False):
     solver.stepHook = rec if after_step is None else (lambda: (rec(), after_step()))
     handlers = _catch_stop_signals()
     try:
-        # short chunks: a stop signal is acted on between two of them
-        dem_scene.run_to_end(solver, chunk=100)  # through the module, so that a benchmark can time it
+        # chunks of about a second: a stop signal is acted on between two of them
+        dem_scene.run_to_end(solver, chunk=100, seconds=1.0)  # through the module, so that a benchmark can time it
         res["status"] = "finished"
     except Interrupted as e:
         res["status"] = f"interrupted: {e}"

@@ -80,9 +80,9 @@ def worker(a):
     timing = {}
     plain = scene.run_to_end
 
-    def timed(solver, chunk=2000):  # times the scenario's own solve, not a (macro) modulus calibration
+    def timed(solver, chunk=2000, seconds=None):  # times the scenario's own solve, not a (macro) modulus calibration
         t0 = time.time()
-        plain(solver, chunk)
+        plain(solver, chunk, seconds)
         if solver.label == "swelldemSolver":
             timing["solve_s"] = time.time() - t0
             timing["iterations"] = int(solver.totalIterations)

@@ -5,6 +5,8 @@ engine list, the quasi-static solver chosen by name, and the one scene builder.
 Import inside YADE with the plugin (scripts/yade-swelldem); in plain Python every function that
 needs YADE raises swelldem.plugin.YadeUnavailableError.
 """
+import time
+
 import numpy as np
 
 from .. import paper
@@ -284,11 +286,22 @@ def build_scene(x, y, r, materials, ip2, law2, integrator, material_of=None, con
     return ids, inters
 
 
-def run_to_end(solver, chunk=2000):
-    """Runs until the solver has converged its last physical step (errors propagate)."""
+def run_to_end(solver, chunk=2000, seconds=None):
+    """Runs until the solver has converged its last physical step (errors propagate), in calls of
+    O.run of at most `chunk` iterations. With `seconds`, a call lasts about that long: the chunk
+    follows the measured time of an iteration, down to one. Python runs a signal handler only
+    between two calls, and an implicit iteration of a large damage run (a factorization) takes
+    seconds, so a fixed chunk would hold a stop signal for minutes. The iterations, and so the
+    results, do not depend on how they are chunked."""
     yade, _ = _yade()
+    O = yade.Omega()
+    n = int(chunk) if seconds is None else 1
     while not solver.finished:
-        yade.Omega().run(chunk, True)
+        t = time.perf_counter()
+        O.run(n, True)
+        if seconds is not None:
+            per_iteration = (time.perf_counter() - t) / n
+            n = max(1, min(int(chunk), int(seconds / per_iteration) if per_iteration > 0 else int(chunk)))
 
 
 def run_chunk_quietly(solver, chunk=2000):
