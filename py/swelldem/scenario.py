@@ -544,9 +544,9 @@ def calibrate_modulus_factor(shear_ratio=0.3, seed=11, size_mm=15.0, strain=1e-4
 
 
 def gel_kinds(test):
-    """The kinds the gel pockets of an asr-coarse test are drawn from: AGG, and ITZ for the
-    'with-itz' reading."""
-    return ("AGG", "ITZ") if test.gel_pockets == "with-itz" else ("AGG",)
+    """The kind names the gel pockets of an asr-coarse test are drawn from (gel_pockets.pool_kinds)."""
+    from .meso import gel_pockets
+    return tuple(paper.KIND_NAMES[k] for k in gel_pockets.pool_kinds(test.gel_pockets))
 
 
 def make_kinds(test):

@@ -17,7 +17,7 @@ from typing import Dict, List
 
 import numpy as np
 
-from ..meso.assembly import AGG, AGGREGATE_MATERIAL, ITZ, KIND_NAMES, MORTAR_MATERIAL
+from ..meso.assembly import AGGREGATE_MATERIAL, KIND_NAMES, MORTAR_MATERIAL
 from ..meso import gel_pockets
 from ..paper import KIND_IDS
 from . import scene as sc
@@ -204,9 +204,6 @@ def set_gel_pockets(yscene, assembly, fraction, d_inf_m, seed, reading="single",
     irrelevant for the assembly's contacts; contacts made later use it). Returns the chosen
     contact indices."""
     chosen = gel_pockets.choose(assembly, reading, fraction, seed, radius_m)
-    pool = assembly.contacts_of_kind(AGG)
-    if reading == "with-itz":
-        pool = np.union1d(pool, assembly.contacts_of_kind(ITZ))
-    set_contact_swelling(yscene, np.setdiff1d(pool, chosen), 0.0)
+    set_contact_swelling(yscene, np.setdiff1d(gel_pockets.pool(assembly, reading), chosen), 0.0)
     set_contact_swelling(yscene, chosen, d_inf_m)
     return chosen

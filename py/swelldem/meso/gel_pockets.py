@@ -16,11 +16,12 @@ the packing does.
 """
 import numpy as np
 
+from ..paper import GEL_DISPLACEMENT_READINGS, GEL_POCKET_READINGS
 from .assembly import AGG, ITZ
 from .generator import choose_contacts
 
-READINGS = ("single", "clustered", "rim", "with-itz")
-DISPLACEMENTS = ("rule", "aggregate")
+READINGS = tuple(GEL_POCKET_READINGS)
+DISPLACEMENTS = tuple(GEL_DISPLACEMENT_READINGS)
 
 
 def _check(name, value, allowed):
@@ -47,11 +48,20 @@ def rim_contacts(assembly):
     return np.nonzero(agg & (at_rim[c[:, 0]] | at_rim[c[:, 1]]))[0]
 
 
+def pool_kinds(reading):
+    """The kind ids the pockets of a reading are drawn from, "the coarse aggregates contacts": AGG,
+    and ITZ for 'with-itz'."""
+    return (AGG, ITZ) if reading == "with-itz" else (AGG,)
+
+
+def pool(assembly, reading):
+    """The contacts (sorted indices) of the kinds the pockets of a reading are drawn from."""
+    return np.nonzero(np.isin(assembly.kind, pool_kinds(reading)))[0]
+
+
 def count(assembly, reading, fraction):
-    """How many contacts swell: round(fraction x the coarse aggregates' contacts), those being the
-    AGG contacts, with the ITZ ones for 'with-itz'."""
-    n = int((assembly.kind == AGG).sum()) + (int((assembly.kind == ITZ).sum()) if reading == "with-itz" else 0)
-    return int(round(float(fraction) * n))
+    """How many contacts swell: round(fraction x the contacts of pool(assembly, reading))."""
+    return int(round(float(fraction) * len(pool(assembly, reading))))
 
 
 def choose(assembly, reading, fraction, seed, radius_m=1e-3):
@@ -70,23 +80,23 @@ def choose(assembly, reading, fraction, seed, radius_m=1e-3):
     k = count(assembly, reading, fraction)
     rng = np.random.default_rng(np.random.SeedSequence(int(seed)))
     if reading == "with-itz":
-        pool = np.nonzero((assembly.kind == AGG) | (assembly.kind == ITZ))[0]
-        return np.sort(rng.choice(pool, size=k, replace=False)) if k else np.zeros(0, dtype=np.int64)
+        drawn_from = pool(assembly, reading)
+        return np.sort(rng.choice(drawn_from, size=k, replace=False)) if k else np.zeros(0, dtype=np.int64)
     if reading == "rim":
-        pool = rim_contacts(assembly)
-        if k > len(pool):
+        rim = rim_contacts(assembly)
+        if k > len(rim):
             raise ValueError(f"swelldem.meso.gel_pockets: gel_fraction = {fraction} is out of range for gel_pockets 'rim': the "
-                             f"aggregates' rims of this mesostructure hold {len(pool)} AGG contacts, fewer than its {k} gel pockets; "
-                             f"allowed: gel_fraction <= {len(pool) / max(1, (assembly.kind == AGG).sum()):.3f}")
-        return np.sort(rng.choice(pool, size=k, replace=False)) if k else np.zeros(0, dtype=np.int64)
+                             f"aggregates' rims of this mesostructure hold {len(rim)} AGG contacts, fewer than its {k} gel pockets; "
+                             f"allowed: gel_fraction <= {len(rim) / max(1, (assembly.kind == AGG).sum()):.3f}")
+        return np.sort(rng.choice(rim, size=k, replace=False)) if k else np.zeros(0, dtype=np.int64)
     if not (np.isfinite(radius_m) and radius_m > 0):
         raise ValueError(f"swelldem.meso.gel_pockets: radius_m = {radius_m} is out of range; allowed: 0 < radius_m < inf [m]")
     from scipy.spatial import cKDTree
-    pool = assembly.contacts_of_kind(AGG)
-    mid = midpoints(assembly)[pool]
-    agg_of = assembly.aggregate_id[assembly.contacts[pool, 0]]
+    agg = assembly.contacts_of_kind(AGG)
+    mid = midpoints(assembly)[agg]
+    agg_of = assembly.aggregate_id[assembly.contacts[agg, 0]]
     tree = cKDTree(mid)
-    taken = np.zeros(len(pool), dtype=bool)
+    taken = np.zeros(len(agg), dtype=bool)
     chosen = []
     while len(chosen) < k:
         free = np.nonzero(~taken)[0]
@@ -97,7 +107,7 @@ def choose(assembly, reading, fraction, seed, radius_m=1e-3):
         near = near[: k - len(chosen)]
         taken[near] = True
         chosen.extend(near.tolist())
-    return np.sort(pool[np.asarray(chosen, dtype=np.int64)]) if k else np.zeros(0, dtype=np.int64)
+    return np.sort(agg[np.asarray(chosen, dtype=np.int64)]) if k else np.zeros(0, dtype=np.int64)
 
 
 def pocket_displacement(d_rule_m, displacement, fraction):
