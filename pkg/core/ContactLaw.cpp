@@ -70,7 +70,8 @@ void ContactLaw::beginContactStep(const ContactGeometry& g, ContactState& s) con
     const double A = g.area, L = g.length, alpha = p_.shearRatio;
     s.kn = stepModulus_ * A / L;
     s.ks = alpha * s.kn;
-    s.duOffsetN = kinetics_ ? swellingDisplacementInf(g) * dxi_ : 0.0;
+    s.duOffsetN = kinetics_ ? swellingDisplacementInf(g) * dxi_ * g.swellingFactor : 0.0;
+    s.duOffsetN += g.imposedOpening - s.imposedOpeningRef;
     s.duOffsetS = s.duOffsetS2 = 0;
     const std::size_t hidden = hiddenStateSize(g.shearComponents);
     // A contact new to this law (created without one) starts with no creep history.
@@ -122,6 +123,7 @@ void ContactLaw::commit(const ContactGeometry& g, ContactState& s) const
     }
     s.committed = s.trial;
     s.openingRef = s.opening;
+    s.imposedOpeningRef = g.imposedOpening;
 }
 
 }  // namespace swelldem::core

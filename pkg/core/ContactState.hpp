@@ -46,6 +46,7 @@ struct ContactState {
     double opening = 0;     ///< in the current trial
     double shearStep = 0;   ///< relative tangential displacement since the step's start [m] (ContactLaw::updateFromStepStart)
     double shearStep2 = 0;  ///< the same along the second tangent (3D) [m]
+    double imposedOpeningRef = 0;  ///< ContactGeometry::imposedOpening at the last commit [m]
 };
 
 }  // namespace swelldem::core

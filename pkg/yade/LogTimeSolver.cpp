@@ -29,6 +29,12 @@ bool logTimeSolverPending(const Scene* scene)
 	return false;
 }
 
+std::vector<Real> LogTimeSolver::plannedTimes() const
+{
+	const auto t = core::logTimes(tStart, tEnd, stepsPerDecade, std::vector<double>(extraTimes.begin(), extraTimes.end()));
+	return std::vector<Real>(t.begin(), t.end());
+}
+
 void LogTimeSolver::postLoad()
 {
 	// The schedule's checks are the core's (one range each); the list itself is made at the start.

@@ -89,10 +89,14 @@ public:
 	template <class C> static void pyMethods(C& cls)
 	{
 		cls.add_property("nSteps", &LogTimeSolver::nSteps, "Number of physical steps [-]");
+		cls.add_property("plannedTimes", &LogTimeSolver::plannedTimes,
+		                 "Physical times the schedule settings (tStart, tEnd, stepsPerDecade, extraTimes) give, tStart first: what "
+		                 "times will hold once the run starts, known before it (e.g. to compute a field on the steps ahead) [day]");
 		cls.add_property("stepHook", &LogTimeSolver::getStepHook, &LogTimeSolver::setStepHook,
 		                 "Python callable run without arguments after every converged physical step, or None. Not saved "
 		                 "with the scene: set it again after O.load [-]");
 	}
+	std::vector<Real>     plannedTimes() const;
 	int                   nSteps() const { return times.empty() ? 0 : int(times.size()) - 1; }
 	static const long     kParallelBodies = 4000; // below this many discs a loop is cheaper than waking OpenMP's threads
 	/// The blocked-DOF bit of each translation and rotation axis.

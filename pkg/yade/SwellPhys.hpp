@@ -34,6 +34,7 @@ template <class Archive> void serialize(Archive& ar, swelldem::core::ContactStat
 	ar& make_nvp("opening", s.opening);
 	ar& make_nvp("shearStep", s.shearStep);
 	ar& make_nvp("shearStep2", s.shearStep2);
+	ar& make_nvp("imposedOpeningRef", s.imposedOpeningRef);
 }
 } // namespace boost::serialization
 BOOST_CLASS_IMPLEMENTATION(swelldem::core::ContactForces, boost::serialization::object_serializable)
@@ -52,6 +53,12 @@ public:
 	X(Real, length, 0.0, swelldem_attr::Setting, "Centre distance L of the stress-free configuration; kn = E A / L [m]")                                 \
 	X(Real, swellDispInf, -1.0, swelldem_attr::Setting,                                                                                                  \
 	  "Per-contact ultimate swelling displacement d_inf; < 0: the kind's ContactKind.swellDispInf [m]")                                                  \
+	X(Real, swellFactor, 1.0, swelldem_attr::Setting,                                                                                                    \
+	  "Factor f on the swelling increment of the coming step, d_inf f dxi: the water the reaction finds (swelldem.dem.humidity sets it "  \
+	  "from the local relative humidity before each step; 1: saturated); gel formed before stays [-]")                                        \
+	X(Real, imposedOpening, 0.0, swelldem_attr::Setting,                                                                                                 \
+	  "Imposed free normal opening at the end of the coming step, a total since the contact was made (drying shrinkage: < 0); the step "  \
+	  "imposes its change since the last converged step (swelldem.dem.humidity sets it) [m]")                                                  \
 	X(int, dim, 2, swelldem_attr::Result,                                                                                                                 \
 	  "2: a contact of a 2D section (both bodies with z translation and x, y rotations blocked), one shear component along "             \
 	  "ez x normal; 3: a 3D contact, shear along two tangents of its facet (set when the contact is made) [-]")                                \
@@ -95,6 +102,8 @@ public:
 		cls.add_property("uRef", +[](const SwellPhys& p) { return p.state.openingRef; }, +[](SwellPhys& p, Real v) { p.state.openingRef = v; },
 		                 "Normal opening (-penetrationDepth) at which the committed force was reached: the stress-free opening at "
 		                 "creation (set it before the first step to choose another), then the converged opening of each step [m]");
+		cls.add_property("imposedOpeningRef", +[](const SwellPhys& p) { return p.state.imposedOpeningRef; },
+		                 "(result) imposedOpening at the end of the last converged step [m]");
 		cls.add_property("duOffsetN", +[](const SwellPhys& p) { return p.state.duOffsetN; }, +[](SwellPhys& p, Real v) { p.state.duOffsetN = v; },
 		                 "Step data: inelastic + swelling normal displacement increment of the current step (opening > 0); set by the step "
 		                 "set-up, writable for experiments [m]");
@@ -118,6 +127,8 @@ public:
 		g.area                    = area;
 		g.length                  = length;
 		g.swellingDisplacementInf = swellDispInf;
+		g.swellingFactor          = swellFactor;
+		g.imposedOpening          = imposedOpening;
 		g.shearComponents         = dim == 3 ? 2 : 1;
 		return g;
 	}

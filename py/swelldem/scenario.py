@@ -35,6 +35,7 @@ import re
 import signal
 import sys
 import time
+import numpy as np
 from dataclasses import MISSING, asdict, dataclass, field, fields
 
 from . import options, paper
@@ -128,6 +129,22 @@ class SwellingTest:
                                        "ImplicitLogTimeSolver, LogTimeSolver's included), VALUE a Python literal, checked by the "
                                        "plugin; applied last (over --steps-per-decade, --tolerance, --t-start, --t-end)",
                                  flag="--solver-param", sets="solver.<setting>", factory=dict)
+    humidity_faces: dict = _field(None, "a specimen face exposed to an ambient relative humidity, FACE H (repeatable): FACE one of "
+                                        "x-, x+, y-, y+ (and z-, z+ in 3D), H a number in (0, 1] or a file of rows 'day, h' "
+                                        "(days >= 0 strictly increasing, linear in between, held before the first and after "
+                                        "the last; '#' starts a comment); faces not given are sealed (swelldem.moisture; "
+                                        "docs/moisture.md)", flag="--humidity-face", factory=dict)
+    humidity_initial: float = _field(1.0, "relative humidity of every particle at the stress-free start (1 with no face exposed: "
+                                          "no moisture model, the saturated run)", unit="-")
+    humidity_exponent: float = _field(8.0, "m of the swelling's humidity factor f(h) = h^m on each step's swelling increment (Capra "
+                                           "and Bournazel 1998, Saouma and Perotti 2006)", unit="-", sets="SwellPhys.swellFactor")
+    shrinkage: dict = _field(None, "drying-shrinkage coefficient k_sh of a kind, KIND=VALUE (repeatable) [strain per unit of h]: the "
+                                   "contact's imposed free strain is -k_sh (h_start - h); absent kinds keep the defaults "
+                                   "(swelldem.dem.humidity.DEFAULT_SHRINKAGE: MORTAR and ITZ shrink, AGG does not)",
+                             flag="--shrinkage", sets="SwellPhys.imposedOpening", factory=dict)
+    humidity_steps_per_decade: float = _field(40.0, "moisture time steps per decade of log time (each physical step split into at "
+                                                    "least this many; backward Euler's error is about 1 % of the drop at 40)",
+                                              unit="1/decade")
     vtk_every: int = _field(0, "ParaView files (DIR/vtk/) every k physical steps, and always of the last (0: only the last)")
     save_state: bool = _field(False, "save the scene (O.save) after every physical step to DIR/state.yade (binary), from which "
                                      "--resume DIR goes on, and at the end to DIR/final.yade.gz")
@@ -192,6 +209,7 @@ class SwellingTest:
         options.number("rebar_yield_stress", self.rebar_yield_stress, lo=0, unit="Pa")
         self.rebar_layout()  # a layout that does not fit the specimen, from the options alone
         self.temperature_history()  # the temperature options, the CSV file read and checked
+        self.humidity_history()  # the humidity options, the CSV files read and checked
         # the mesostructure generator's own checks (a specimen too small for the sieve fractions, an
         # aggregate fraction it cannot place, ...), run here so that they too come before any work
         from .meso import MesoParameters
@@ -254,6 +272,43 @@ class SwellingTest:
         days, celsius = read_temperature_csv(self.temperature_csv)
         return days, [c + KELVIN for c in celsius]
 
+    @property
+    def humidity(self):
+        """Whether the run has a moisture model: a face exposed or an initial h below 1."""
+        return bool(self.humidity_faces) or self.humidity_initial != 1.0
+
+    def humidity_history(self):
+        """{face: h or (days [day], h)} of humidity_faces (CSV files read), after checking every
+        humidity option (the initial h, the faces for the specimen's dimension, the exponent, the
+        shrinkage coefficients, the moisture steps), in the one message form."""
+        from .dem.humidity import FACES_2D, FACES_3D, DEFAULT_SHRINKAGE
+        options.number("humidity_initial", self.humidity_initial, lo=0, hi=1, hi_incl=True)
+        options.number("humidity_exponent", self.humidity_exponent, lo=0, lo_incl=True)
+        options.number("humidity_steps_per_decade", self.humidity_steps_per_decade, lo=0)
+        if not isinstance(self.shrinkage, dict):
+            _bad("shrinkage", self.shrinkage, "a dict {kind name: k_sh}")
+        for name, k in self.shrinkage.items():
+            if name not in DEFAULT_SHRINKAGE:
+                _bad("shrinkage kind", name, ", ".join(DEFAULT_SHRINKAGE))
+            options.number(f"shrinkage {name}", k, lo=0, lo_incl=True, allowed="0 <= k_sh < inf [strain per unit of h]")
+        if not isinstance(self.humidity_faces, dict):
+            _bad("humidity_faces", self.humidity_faces, "a dict {face: h or CSV file}")
+        faces = FACES_3D if self.dim == 3 else FACES_2D
+        out = {}
+        for face, value in self.humidity_faces.items():
+            if face not in faces:
+                _bad("humidity_faces face", face, ", ".join(faces) + f" (the faces of a {'box' if self.dim == 3 else 'section'})")
+            if isinstance(value, str) and not options.is_number(_number_or_text(value)):
+                out[face] = read_humidity_csv(value, face)
+            else:
+                h = _number_or_text(value)
+                options.number(f"humidity_faces {face}", h, lo=0, hi=1, hi_incl=True)
+                out[face] = float(h)
+        if self.humidity and self.rebar_ratio != 0:
+            _bad("rebar_ratio", self.rebar_ratio, "0 with a moisture model (humidity_faces or humidity_initial < 1): the "
+                                                  "moisture network needs every particle's cell, and a bar carves some out")
+        return out
+
     def rebar_layout(self):
         """The bars' swelldem.dem.rebar.RebarLayout (None without bars), from the options alone (size,
         ratio, bar count, steel); OptionError for a layout that does not fit the specimen."""
@@ -308,6 +363,49 @@ def read_temperature_csv(path):
     return days, celsius
 
 
+def _number_or_text(value):
+    """A number given as text becomes the number; other text stays (a file name)."""
+    if isinstance(value, str):
+        try:
+            return float(value)
+        except ValueError:
+            return value
+    return value
+
+
+def read_humidity_csv(path, face):
+    """(days [day], h [-]) of an ambient humidity history file for `face`: one row 'day, h' per
+    line, days >= 0 strictly increasing, 0 < h <= 1; '#' starts a comment. ValueError in the one
+    message form, naming the file, line and value."""
+    name = f"humidity_faces {face}"
+    try:
+        with open(path) as f:
+            lines = f.readlines()
+    except OSError as e:
+        _bad(name, path, f"a number in (0, 1] or a readable text file of rows 'day, h' ({getattr(e, 'strerror', None) or e})")
+    days, hs = [], []
+    for n, line in enumerate(lines, 1):
+        line = line.split("#")[0].strip()
+        if not line:
+            continue
+        parts = [p for p in re.split(r"[,;\s]+", line) if p]
+        try:
+            day, h = (float(p) for p in parts)
+        except ValueError:
+            _bad(f"{name} line {n}", line, "two numbers 'day, h'")
+        if days:
+            options.number(f"{name} day (line {n})", day, lo=days[-1], unit="day",
+                           allowed=f"{days[-1]:g} < day < inf [day] (strictly increasing)")
+        else:
+            options.number(f"{name} day (line {n})", day, lo=0, lo_incl=True, unit="day")
+        options.number(f"{name} h (line {n})", h, lo=0, hi=1, hi_incl=True)
+        days.append(day)
+        hs.append(h)
+    if not days:
+        _bad(name, path, "a file with at least one row 'day, h'")
+    return days, hs
+
+
 def parse_kind_param(text):
     """'KIND.attribute=value' -> (KIND, attribute, value); value a Python literal (5e6, True, ...)
     or else the text itself (viscoelastic)."""
@@ -354,9 +452,12 @@ def add_arguments(parser):
             parser.add_argument(flag, dest=f.name, type=type(default[0]), nargs="+" if f.name == "size_mm" else len(default),
                                 default=default, metavar="W H [D]" if f.name == "size_mm" else None,
                                 help=help_text + f" (default {default})")
+        elif f.name == "humidity_faces":
+            parser.add_argument(flag, dest=f.name, action="append", nargs=2, default=[], metavar=("FACE", "H|CSV"), help=help_text)
         elif isinstance(default, dict):
             parser.add_argument(flag, dest=f.name, action="append", default=[],
-                                metavar="KIND.ATTR=VALUE" if f.name == "kind_params" else "NAME=VALUE", help=help_text)
+                                metavar={"kind_params": "KIND.ATTR=VALUE", "shrinkage": "KIND=VALUE"}.get(f.name, "NAME=VALUE"),
+                                help=help_text)
         else:
             parser.add_argument(flag, dest=f.name, type=m["type"] or type(default), default=default, choices=m["choices"],
                                 help=help_text + f" (default {default})")
@@ -381,6 +482,18 @@ def from_arguments(ns):
         params.setdefault(kind, {})[attr] = value
     kw["kind_params"] = params
     kw["solver_params"] = dict(parse_solver_param(text) for text in kw["solver_params"])
+    faces = {}
+    for face, value in kw["humidity_faces"]:
+        if face in faces:
+            _bad("humidity_faces face", face, "each face once")
+        faces[face] = _number_or_text(value)
+    kw["humidity_faces"] = faces
+    given, kw["shrinkage"] = kw["shrinkage"], {}
+    for text in given:
+        name, eq, value = text.partition("=")
+        if not (eq and name.strip()):
+            _bad("shrinkage", text, "KIND=VALUE, e.g. MORTAR=3e-3")
+        kw["shrinkage"][name.strip()] = _number_or_text(value.strip())
     return SwellingTest(**kw)
 
 
@@ -651,6 +764,38 @@ def set_swelling(test, kinds, d_inf):
     for name in paper.SCENARIOS[test.scenario]["swelling_kinds"]:
         if "swellDispInf" not in test.kind_params.get(name, {}):
             kinds[name].swellDispInf = d_inf
+
+
+def make_humidity(test, built, solver):
+    """The moisture of a built test (swelldem.dem.humidity.HumidityDriver): its faces, initial h,
+    exponent and shrinkage coefficients (the defaults for kinds the test leaves out), on the
+    solver's planned times."""
+    from .dem import humidity
+    t0 = time.time()
+    driver = humidity.HumidityDriver(built.assembly, built.scene, solver, test.humidity_history(), test.humidity_initial,
+                                     humidity.Coupling(test.humidity_exponent, {**humidity.DEFAULT_SHRINKAGE, **test.shrinkage}),
+                                     steps_per_decade=test.humidity_steps_per_decade)
+    hist = driver.history
+    print(f"swelldem: set-up: moisture {len(hist.times_days) - 1} steps, {int(np.sum(hist.iterations))} Newton iterations, "
+          f"h at the end {driver.mean_h()['specimen'][-1]:.3f} (specimen mean), {time.time() - t0:.1f} s", flush=True)
+    return driver
+
+
+def humidity_record(test, driver):
+    """The moisture of a run as results.json records it: the faces (sealed ones left out) with
+    their ambient h or history, the initial h, the coupling, and per planned time the mean h of
+    each kind's contacts and particles and of the specimen (the h history is computed before the
+    run: the transport does not depend on the mechanics)."""
+    hist = driver.history
+    faces = {face: (v if not isinstance(v, tuple) else {"days": list(v[0]), "h": list(v[1])})
+             for face, v in test.humidity_history().items()}
+    return {"faces": faces, "sources": {f: str(v) for f, v in test.humidity_faces.items()},
+            "h_initial": test.humidity_initial, "exponent": driver.coupling.exponent,
+            "shrinkage_per_h": driver.coupling.shrinkage, "steps_per_decade": test.humidity_steps_per_decade,
+            "moisture_steps": int(len(hist.times_days) - 1), "newton_iterations": int(np.sum(hist.iterations)),
+            "balance_residual_max": float(np.max(hist.relative_balance_residual())) if len(hist.times_days) > 1 else 0.0,
+            "times_days": driver.times.tolist(), "mean_h": driver.mean_h(),
+            "swelling_factor_mean": driver.factor.mean(axis=1).tolist() if driver.factor.size else []}
 
 
 def temperature_record(test, kinds):
@@ -955,7 +1100,15 @@ def run(test, prepared=None, extra_times=(), after_step=None, resume=False):
         done = rec.resume(solver)
         res.setdefault("resumed", []).append({"steps_done": done, "time": time.time()})
         print(f"swelldem: resumed from {state}: {done} of {solver.nSteps} physical steps done", flush=True)
-    solver.stepHook = rec if after_step is None else (lambda: (rec(), after_step()))
+    humidity = None
+    if test.humidity:
+        humidity = make_humidity(test, built, solver)
+        if not resume:
+            res["humidity"] = humidity_record(test, humidity)
+        rec.particle_fields = lambda ids: [("h", np.float64, humidity.h_at(solver.physTime)[ids])]
+        humidity.apply(max(1, int(solver.step)))  # the first step to run (after a resume: the coming one)
+    hooks = [h for h in (rec, after_step, humidity) if h is not None]
+    solver.stepHook = rec if len(hooks) == 1 else (lambda: [h() for h in hooks])
     handlers = _catch_stop_signals()
     try:
         # chunks of about a second: a stop signal is acted on between two of them
@@ -982,6 +1135,9 @@ def run(test, prepared=None, extra_times=(), after_step=None, resume=False):
             signal.signal(sig, handler)
     if len(gel):
         gel_pocket_forces(res["gel_pockets"], built)
+    if humidity is not None:
+        from .dem import humidity as dem_humidity
+        dem_humidity.save_history(test.out, humidity)
     rec.export_vtk()
     if test.save_state:
         recorder.save_scene(os.path.join(test.out, recorder.FINAL_FILE))

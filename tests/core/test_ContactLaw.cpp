@@ -191,3 +191,92 @@ TEST(ContactLaw, TemperatureHistoryDrivesTheSwelling)
     EXPECT_NEAR(sum20, k.xi(3650) - k.xi(1), 1e-6);
     EXPECT_NEAR(sumHot, k.xiAt(3650, 313.15) - k.xiAt(1, 313.15), 1e-6);
 }
+
+// A moisture driver scales each step's swelling increment by f(h): restrained, the force is
+// -kn d_inf sum f_k (xi_k - xi_{k-1}); gel formed in a wet step stays when a later step is dry.
+TEST(ContactLaw, SwellingFactorScalesOnlyTheStepsIncrement)
+{
+    ContactLaw law(mortarKind(Behaviour::Elastic, true));
+    const auto times = logTimes(1, 3650, 10);
+    const double kn = 25e9 * kGeom.area / kGeom.length;
+    ContactState s;
+    law.initState(s);
+    double expected = 0;
+    for (std::size_t i = 1; i < times.size(); ++i) {
+        ContactGeometry g = kGeom;
+        g.swellingFactor = times[i] < 80 ? 1.0 : (times[i] < 400 ? 0.3 : 0.0);
+        law.beginStep(times[i - 1], times[i]);
+        law.beginContactStep(g, s);
+        law.trial(g, s, 0.0, 0.0);
+        law.commit(g, s);
+        expected += -kn * kDinf * g.swellingFactor * (ref::sigmoid(times[i], 50, 100) - ref::sigmoid(times[i - 1], 50, 100));
+        ASSERT_NEAR(s.committed.Fn / expected, 1.0, 1e-12) << "t = " << times[i];
+    }
+    EXPECT_LT(s.committed.Fn, -0.1 * kn * kDinf);  // the swelling of the wet steps is kept
+}
+
+// imposedOpening is a total: restrained, Fn = kn (0 - imposedOpening) whatever the path to it,
+// and a contact free to follow it carries no force.
+TEST(ContactLaw, ImposedOpeningIsATotalImposedEachStepByItsChange)
+{
+    ContactLaw law(mortarKind(Behaviour::Elastic, false));
+    const double kn = 25e9 * kGeom.area / kGeom.length;
+    const std::vector<double> imposed{-1e-7, -4e-7, -2.5e-7, -6e-7};
+    ContactState restrained, free;
+    law.initState(restrained);
+    law.initState(free);
+    double t = 1, prev = 0;
+    for (const double u : imposed) {
+        ContactGeometry g = kGeom;
+        g.imposedOpening = u;
+        law.beginStep(t, 2 * t);
+        t *= 2;
+        law.beginContactStep(g, restrained);
+        law.trial(g, restrained, 0.0, 0.0);
+        law.commit(g, restrained);
+        EXPECT_NEAR(restrained.committed.Fn, -kn * u, 1e-12 * kn * 6e-7);
+        law.beginContactStep(g, free);
+        law.trial(g, free, u - prev, 0.0);
+        law.commit(g, free);
+        EXPECT_NEAR(free.committed.Fn, 0.0, 1e-12 * kn * 6e-7);
+        EXPECT_EQ(restrained.imposedOpeningRef, u);
+        prev = u;
+    }
+}
+
+// On an aging viscoelastic contact an imposed opening that follows d_inf xi(t) is the swelling
+// itself: the same forces as the swelling path (checked against Volterra's integral above).
+TEST(ContactLaw, ImposedOpeningCreepsAsSwellingDoes)
+{
+    ContactLaw swelling(mortarKind(Behaviour::Viscoelastic, true));
+    ContactLaw imposed(mortarKind(Behaviour::Viscoelastic, false));
+    const auto times = logTimes(1, 3650, 10);
+    const auto F = restrainedSwelling(swelling, times);
+    ContactState s;
+    imposed.initState(s);
+    for (std::size_t i = 1; i < times.size(); ++i) {
+        ContactGeometry g = kGeom;
+        g.imposedOpening = kDinf * (ref::sigmoid(times[i], 50, 100) - ref::sigmoid(times[0], 50, 100));
+        imposed.beginStep(times[i - 1], times[i]);
+        imposed.beginContactStep(g, s);
+        imposed.trial(g, s, 0.0, 0.0);
+        imposed.commit(g, s);
+        ASSERT_NEAR(s.committed.Fn / F[i], 1.0, 1e-9) << "t = " << times[i];
+    }
+}
+
+TEST(ContactLaw, MoistureInputsAreChecked)
+{
+    ContactLaw law(mortarKind(Behaviour::Elastic, true));
+    ContactState s;
+    law.initState(s);
+    law.beginStep(1, 2);
+    for (const double f : {-0.1, std::nan(""), double(INFINITY)}) {
+        ContactGeometry g = kGeom;
+        g.swellingFactor = f;
+        EXPECT_THROW(law.beginContactStep(g, s), std::invalid_argument) << f;
+    }
+    ContactGeometry g = kGeom;
+    g.imposedOpening = std::nan("");
+    EXPECT_THROW(law.beginContactStep(g, s), std::invalid_argument);
+}

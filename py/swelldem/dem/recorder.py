@@ -157,6 +157,7 @@ class StepRecorder:
     def __init__(self, assembly, yscene, solver, res, out, vtk_every=0, platens=None, bars=None, save_state=False, resuming=False):
         self.a, self.ys, self.solver, self.res, self.out, self.vtk_every = assembly, yscene, solver, res, out, vtk_every
         self.platens, self.bars, self.save_state = platens, bars, save_state
+        self.particle_fields = None  # further per-particle VTK arrays: a callable of the body ids (VtkSeries.export)
         self.dim = getattr(assembly, "dim", 2)
         self.ref = reference_positions(assembly)
         self.weights = skeleton_weights(assembly)
@@ -304,7 +305,7 @@ class StepRecorder:
         its last step whatever vtk_every)."""
         step = len(self.res["times_days"]) - 1
         if step >= 0 and not self.vtk.exported(step):
-            self.vtk.export(step, self.res["times_days"][step])
+            self.vtk.export(step, self.res["times_days"][step], self.particle_fields)
 
 
 #: With save_state, the scene after the last converged step, from which a run goes on (scenario.run's

@@ -15,7 +15,8 @@ plane z = 0; its vertices in single precision, a drawing).
     stress [Pa] the disc's Love-Weber mean stress tensor (9 components, tension positive; see
     disc_state), meanStress [Pa] its in-plane mean (sigma_xx + sigma_yy) / 2;
     damage [-] the share of the disc's bonded contacts (those bonded at the start) broken since,
-    bondedContacts [-] their number (damage is 0 for a disc without any).
+    bondedContacts [-] their number (damage is 0 for a disc without any); h [-] the disc's relative
+    humidity, in a run with a moisture model (swelldem.dem.humidity).
 contacts_<step>.vtp: one line cell per real interaction, between the two disc centres.
   point data (the centres of all discs): id, displacement [m] (as in the particles' file).
   cell data: kindId [-] and kind (its name, a string), Fn [N] normal force, tension positive; Fs [N]
@@ -321,15 +322,21 @@ class VtkSeries:
         """Whether step (index into times_days) has been written."""
         return any(s == step for s, _ in self.entries)
 
-    def export(self, step, time_days):
-        """Writes the scene of O now as step `step` at physical time time_days [day]."""
+    def export(self, step, time_days, particle_fields=None):
+        """Writes the scene of O now as step `step` at physical time time_days [day].
+        particle_fields: a callable of the particles' body ids giving further per-particle arrays,
+        [(name, numpy dtype, values)] (a moisture run's h)."""
         name = f"{step:05d}.vtp"
         if self.cell_volume is not None:  # a 3D box: spheres as points
             pts, offs, conn, cells, pdata = sphere_points(self.cell_volume, self.bonded)
+            if particle_fields is not None:
+                pdata += particle_fields(np.asarray(pdata[0][2], dtype=np.int64))
             write_polydata(os.path.join(self.dir, "particles_" + name), pts, "Verts", offs, conn, cells, pdata,
                            time_days=time_days, step=step)
         else:
             pts, offs, conn, cells, pdata = particle_cells(self.sides, self.cell_area, self.thickness, self.bonded)
+            if particle_fields is not None:
+                cells += particle_fields(np.asarray(cells[0][2], dtype=np.int64))
             # the polygons are a drawing: single precision (a third of the file less; the centres are
             # exact in the contacts' file, the displacements in both)
             write_polydata(os.path.join(self.dir, "particles_" + name), pts, "Polys", offs, conn, cells, pdata,
