@@ -206,12 +206,101 @@ def run_conditions(res):
         out.append(f"bars {100 * cfg['rebar_ratio']:g} %")
     if cfg.get("dim") == 3:
         out.append("3D box")
+    out += humidity_conditions(cfg)
     for name in _PARAMETER_SETTINGS:
         if name in cfg and json.dumps(cfg[name]) != json.dumps(getattr(defaults, name)):
             out.append(f"{name}={setting_text(res, name)}")
     if cfg.get("kind_params"):
         out.append(setting_text(res, "kind_params"))
     return out
+
+
+def humidity_conditions(cfg):
+    """The moisture settings of a run's config as short texts ([] for a saturated run): the exposed
+    faces with their ambient h (or history file), the initial h, and the coupling where set away
+    from its default."""
+    faces, h0 = cfg.get("humidity_faces") or {}, cfg.get("humidity_initial", 1.0)
+    if not faces and h0 == 1.0:
+        return []
+    out = []
+    by_value = {}
+    for face, v in faces.items():
+        by_value.setdefault(str(v) if not isinstance(v, (int, float)) else f"h {v:g}", []).append(face)
+    for v, fs in by_value.items():
+        out.append(f"{' '.join(fs)} exposed to {v if v.startswith('h ') else os.path.basename(v)}")
+    if not faces:
+        out.append("sealed")
+    out.append(f"h initial {h0:g}")
+    from .scenario import SwellingTest
+    d = SwellingTest()
+    if cfg.get("humidity_exponent", d.humidity_exponent) != d.humidity_exponent:
+        out.append(f"f(h) = h^{cfg['humidity_exponent']:g}")
+    if cfg.get("shrinkage"):
+        out.append("k_sh " + " ".join(f"{k}={v:g}" for k, v in sorted(cfg["shrinkage"].items())))
+    return out
+
+
+def exposed_faces(res):
+    """{face: label} of the faces a run exposed to an ambient humidity ({} for a sealed or
+    saturated run)."""
+    faces = (res.get("config") or {}).get("humidity_faces") or {}
+    return {f: (f"h {v:g}" if isinstance(v, (int, float)) else os.path.basename(str(v))) for f, v in faces.items()}
+
+
+def _mark_faces(ax, res, width_mm, height_mm):
+    """The exposed faces of a section's map, a blue band along each (drying or wetting)."""
+    ends = {"x-": ([0, 0], [0, height_mm]), "x+": ([width_mm] * 2, [0, height_mm]),
+            "y-": ([0, width_mm], [0, 0]), "y+": ([0, width_mm], [height_mm] * 2)}
+    for n, (face, label) in enumerate(sorted(exposed_faces(res).items())):
+        if face in ends:
+            ax.plot(*ends[face], "-", color="tab:blue", lw=5, alpha=0.7, solid_capstyle="butt", clip_on=False,
+                    label=f"exposed faces ({', '.join(f'{f} {v}' for f, v in sorted(exposed_faces(res).items()))})"
+                    if n == 0 else None)
+
+
+def plot_humidity_maps(out, res, assembly, days=None, name="humidity_maps.png"):
+    """h of every particle at up to four times (default: 10, 100 and 1000 days and the run's
+    end, those within it) from the run's humidity.npz, the exposed faces marked; a 3D box's
+    particles within a radius of its mid-depth plane. Returns the path, or None without the file."""
+    path = os.path.join(out, "humidity.npz")
+    if not os.path.exists(path):
+        return None
+    data = np.load(path)
+    times, h = data["times_days"], data["h"].astype(float)
+    if days is None:
+        days = [d for d in (10.0, 100.0, 1000.0) if times[0] < d < times[-1]] + [float(times[-1])]
+    plt = _plt()
+    from matplotlib.collections import PatchCollection
+    from matplotlib.patches import Circle
+    x, y, r = np.asarray(assembly.x) * 1e3, np.asarray(assembly.y) * 1e3, np.asarray(assembly.r) * 1e3
+    if getattr(assembly, "dim", 2) == 3:
+        dz = np.asarray(assembly.z) * 1e3 - assembly.depth_m * 1e3 / 2
+        keep = np.abs(dz) < r
+        r = np.where(keep, np.sqrt(np.maximum(r ** 2 - dz ** 2, 0)), 0)
+    else:
+        keep = np.ones(len(x), dtype=bool)
+    w, hh = assembly.width_m * 1e3, assembly.height_m * 1e3
+    n = len(days)
+    fig, axes = plt.subplots(1, n, figsize=(3.6 * n + 1.2, 3.6 * hh / w + 0.9), squeeze=False)
+    fig.subplots_adjust(left=0.06, right=0.9, wspace=0.3, top=0.8)
+    lo = float(min(h.min(), 0.999))
+    for ax, d in zip(axes[0], days):
+        k = int(np.argmin(np.abs(times - d)))
+        pc = PatchCollection([Circle((x[i], y[i]), r[i]) for i in np.nonzero(keep)[0]], cmap="viridis_r", linewidths=0)
+        pc.set_array(h[k][keep])
+        pc.set_clim(lo, 1.0)
+        ax.add_collection(pc)
+        _mark_faces(ax, res, w, hh)
+        _frame(ax, w, hh, "x [mm]", "y [mm]", f"t = {times[k]:.4g} d, mean h {h[k] @ _volumes(assembly) / _volumes(assembly).sum():.3f}")
+    fig.colorbar(pc, cax=fig.add_axes([0.92, 0.15, 0.012, 0.62]), label="relative humidity h [-]")
+    fig.suptitle(_title(res) + ("" if getattr(assembly, "dim", 2) == 2 else ", mid-depth section"), fontsize=10)
+    target = os.path.join(out, name)
+    _save(fig, target, dpi=110)
+    return target
+
+
+def _volumes(assembly):
+    return np.asarray(assembly.cell_volume_m3 if getattr(assembly, "dim", 2) == 3 else assembly.cell_area_m2, dtype=float)
 
 
 def size_note(res):
@@ -690,6 +779,7 @@ def plot_crack_map(out, res, assembly, broken_contacts, step=-1, name="crack_map
                 s = np.asarray(s) * 1e3
                 segs.append([(s[0], s[1]), (s[2], s[3])])
     _add_cracks(ax, lines, {kname: f"{kname} ({len(segs)} broken)" for kname, segs in lines.items()})
+    _mark_faces(ax, res, assembly.width_m * 1e3, assembly.height_m * 1e3)
     _frame(ax, assembly.width_m * 1e3, assembly.height_m * 1e3, "x [mm]", "y [mm]", _map_title(res, step))
     if ax.get_legend_handles_labels()[0]:
         ax.legend(loc="upper right", fontsize=8)
@@ -928,6 +1018,7 @@ def write_all(out, res, assembly, broken_contacts):
     if getattr(assembly, "dim", 2) == 3:
         plot_crack_view_3d(out, res, assembly, broken_contacts)
         write_crack_section_rows(out, rows)
+    plot_humidity_maps(out, res, assembly)
 
 
 # ---- several runs on one figure (paper Figures 3.3-3.14: elastic / viscoelastic, damage / none)

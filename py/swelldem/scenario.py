@@ -1105,6 +1105,8 @@ def run(test, prepared=None, extra_times=(), after_step=None, resume=False):
         humidity = make_humidity(test, built, solver)
         if not resume:
             res["humidity"] = humidity_record(test, humidity)
+        from .dem.humidity import save_history
+        save_history(test.out, humidity)  # known before the run: the transport does not depend on the mechanics
         rec.particle_fields = lambda ids: [("h", np.float64, humidity.h_at(solver.physTime)[ids])]
         humidity.apply(max(1, int(solver.step)))  # the first step to run (after a resume: the coming one)
     hooks = [h for h in (rec, after_step, humidity) if h is not None]
@@ -1135,9 +1137,6 @@ def run(test, prepared=None, extra_times=(), after_step=None, resume=False):
             signal.signal(sig, handler)
     if len(gel):
         gel_pocket_forces(res["gel_pockets"], built)
-    if humidity is not None:
-        from .dem import humidity as dem_humidity
-        dem_humidity.save_history(test.out, humidity)
     rec.export_vtk()
     if test.save_state:
         recorder.save_scene(os.path.join(test.out, recorder.FINAL_FILE))

@@ -30,7 +30,7 @@ from .. import moisture, paper
 from ..plugin import require
 
 #: Drying-shrinkage coefficient k_sh of each kind [strain per unit of h] (docs/moisture.md section 10).
-DEFAULT_SHRINKAGE = {"MORTAR": 3.0e-3, "ITZ": 3.0e-3, "AGG": 0.0}
+DEFAULT_SHRINKAGE = {"MORTAR": 2.2e-3, "ITZ": 2.2e-3, "AGG": 0.0}
 
 #: Faces of a specimen, in swelldem.moisture's names.
 FACES_2D = ("x-", "x+", "y-", "y+")
