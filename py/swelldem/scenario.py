@@ -677,9 +677,10 @@ def make_kinds(test):
                       tensile_strength=paper.TENSILE_STRENGTH[name] * test.strength_scale, swelling=swells)
         given = {**temperature, **test.kind_params.get(name, {})}
         if name == "AGG":
-            kinds[name] = dem.contact_kind(name, behaviour="elastic", young=test.aggregate_young, **common, **given)
+            kinds[name] = dem.contact_kind(name, behaviour=given.pop("behaviour", "elastic"), young=test.aggregate_young, **common, **given)
         else:
-            behaviour = "viscoelastic" if test.behaviour == "viscoelastic" else "aging-elastic"
+            # a kind's own behaviour (KIND.behaviour=...) over the test's
+            behaviour = given.pop("behaviour", "viscoelastic" if test.behaviour == "viscoelastic" else "aging-elastic")
             extra = {"kelvinUnitsPerDecade": test.kelvin_units_per_decade, **given}
             kinds[name] = dem.contact_kind(name, behaviour=behaviour, b3=paper.B3_OF_KIND[name], **common, **extra)
     return kinds
