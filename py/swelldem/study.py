@@ -95,6 +95,10 @@ def command_options(settings):
             out += [w for kind, attrs in value.items() for attr, v in attrs.items() for w in (flags[name], f"{kind}.{attr}={v!r}")]
         elif name == "solver_params":
             out += [w for k, v in value.items() for w in (flags[name], f"{k}={v!r}")]
+        elif name == "shrinkage":
+            out += [w for k, v in value.items() for w in (flags[name], f"{k}={float(v)!r}")]
+        elif name == "humidity_faces":
+            out += [w for face, v in value.items() for w in (flags[name], face, repr(float(v)) if options.is_number(v) else str(v))]
         else:
             out += [flags[name], repr(value) if isinstance(value, float) else str(value)]
     return out

@@ -169,3 +169,40 @@ def test_humidity_history_file_is_read(tmp_path):
     path = tmp_path / "rh.csv"
     path.write_text("# day, h\n0, 0.95\n100; 0.6\n1000 0.7\n")
     assert scenario.SwellingTest(humidity_faces={"y+": str(path)}).humidity_history() == {"y+": ([0.0, 100.0, 1000.0], [0.95, 0.6, 0.7])}
+
+
+KILLED = r"""
+import os, signal, sys, json
+sys.path.insert(0, sys.argv[1])
+from swelldem import scenario
+kw = json.loads(sys.argv[3])
+test = scenario.SwellingTest(save_state=True, out=sys.argv[2], **kw)
+def kill():   # after the recorder has written step 9 and saved the state: killed as by SIGKILL
+    if len(open(sys.argv[2] + "/curves.csv").read().splitlines()) - 1 == 9:
+        os.kill(os.getpid(), signal.SIGKILL)
+scenario.run(test, after_step=kill if sys.argv[4] == "kill" else None)
+"""
+
+RESUME = r"""
+import sys
+sys.path.insert(0, sys.argv[1])
+from swelldem import scenario
+scenario.run(scenario.resumed_test(sys.argv[2]), resume=True)
+"""
+
+
+def test_a_killed_drying_run_resumed_equals_the_uninterrupted_one(yade_run, tmp_path):
+    """The driver sets the coming step's factors and openings after the state's load; the
+    committed imposed openings come back with the state."""
+    import signal
+    kw = json.dumps(dict(scenario="isr", size_mm=[12.0, 12.0], steps_per_decade=5, humidity_faces={"x-": 0.5, "y+": 0.7}))
+    py = os.path.join(REPO, "py")
+    yade_run(KILLED, py, str(tmp_path / "ref"), kw, "run", threads=1)
+    yade_run(KILLED, py, str(tmp_path / "run"), kw, "kill", threads=1, check=False)
+    assert yade_run.proc.returncode == -signal.SIGKILL
+    yade_run(RESUME, py, str(tmp_path / "run"), threads=1)
+    ref, got = (json.load(open(tmp_path / n / "results.json")) for n in ("ref", "run"))
+    assert got["status"] == "finished" and got["resumed"][0]["steps_done"] == 9
+    assert ref["per_kind"]["ITZ"]["broken"][-1] > 0
+    for key in ("times_days", "swelling_strain_x", "swelling_strain_y", "per_kind", "humidity"):
+        assert got[key] == ref[key], key
