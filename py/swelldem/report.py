@@ -281,8 +281,7 @@ def plot_humidity_maps(out, res, assembly, days=None, name="humidity_maps.png"):
         keep = np.ones(len(x), dtype=bool)
     w, hh = assembly.width_m * 1e3, assembly.height_m * 1e3
     n = len(days)
-    fig, axes = plt.subplots(1, n, figsize=(3.6 * n + 1.2, 3.6 * hh / w + 0.9), squeeze=False)
-    fig.subplots_adjust(left=0.06, right=0.9, wspace=0.3, top=0.8)
+    fig, axes = plt.subplots(1, n, figsize=(3.6 * n + 1.2, 3.6 * hh / w + 0.9), squeeze=False, layout="constrained")
     lo = float(min(h.min(), 0.999))
     for ax, d in zip(axes[0], days):
         k = int(np.argmin(np.abs(times - d)))
@@ -292,10 +291,11 @@ def plot_humidity_maps(out, res, assembly, days=None, name="humidity_maps.png"):
         ax.add_collection(pc)
         _mark_faces(ax, res, w, hh)
         _frame(ax, w, hh, "x [mm]", "y [mm]", f"t = {times[k]:.4g} d, mean h {h[k] @ _volumes(assembly) / _volumes(assembly).sum():.3f}")
-    fig.colorbar(pc, cax=fig.add_axes([0.92, 0.15, 0.012, 0.62]), label="relative humidity h [-]")
+    fig.colorbar(pc, ax=axes[0].tolist(), label="relative humidity h [-]", shrink=0.85)
     fig.suptitle(_title(res) + ("" if getattr(assembly, "dim", 2) == 2 else ", mid-depth section"), fontsize=10)
     target = os.path.join(out, name)
-    _save(fig, target, dpi=110)
+    fig.savefig(target, dpi=110)  # constrained layout: not _save's tight_layout, which ignores the colour bar
+    plt.close(fig)
     return target
 
 
