@@ -371,6 +371,7 @@ LogTimeSolver::StepOutcome LogTimeSolver::settleStep(const Balance& b, bool conv
 	const bool newBreaks = breaks != brokenSeen;
 	brokenSeen           = breaks;
 	StepOutcome out      = StepOutcome::Continue;
+	if (verbose) longStepLine(b);
 	if (iterInStep >= minIterations && !newBreaks && converged) {
 		if (breakOverloaded() == 0) {
 			stepRoundOff.push_back(b.ratio > tolerance ? 1.0 : 0.0);
@@ -392,6 +393,23 @@ LogTimeSolver::StepOutcome LogTimeSolver::settleStep(const Balance& b, bool conv
 		     + " (unbalanced-force ratio " + num(b.ratio) + ", tolerance " + num(tolerance) + ")"
 		     + (progressDetail ? "; in this step" + progressDetail() : std::string()));
 	return out;
+}
+
+void LogTimeSolver::longStepLine(const Balance& b)
+{
+	// A step that runs long (a cracking step, a fallback to relaxation) says every 30 s where it is,
+	// so that a run is never silent for minutes; what is left cannot be estimated until it settles.
+	constexpr double every = 30.0;
+	const double     el    = wallNow();
+	const double     start = stepWall.empty() ? 0.0 : stepWall.back();
+	if (iterInStep <= 1) longStepShown = 0;
+	if (el - start < every || el - std::max(longStepShown, start) < every) return;
+	longStepShown = el;
+	std::printf("swelldem: step %d/%d  t = %s to %s d  still iterating: %ld %s iterations%s so far, unbalanced %.2e (tolerance %.0e), "
+	            "%.0f s in this step, elapsed %.1f s; left: unknown until the step settles\n",
+	            step, nSteps(), num(times[step - 1]).c_str(), num(times[step]).c_str(), iterInStep, iterationName,
+	            (progressDetail ? progressDetail() : std::string()).c_str(), b.ratio, tolerance, el - start, el);
+	std::fflush(stdout);
 }
 
 void LogTimeSolver::progressLine() const

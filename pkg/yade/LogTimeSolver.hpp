@@ -166,6 +166,8 @@ private:
 	void   runStepHook();
 	void   recordHistory();
 	void   progressLine() const;
+	void   longStepLine(const Balance& b);
+	double longStepShown = 0; // [s] wallNow() of the last line of a long step (0: none in this step)
 	std::chrono::steady_clock::time_point  sessionStart = std::chrono::steady_clock::now();
 	bool                                   kindsStale   = true; // the list of kinds and law2 are not saved: found again after O.load
 	std::unique_ptr<boost::python::object> stepHook_;           // null: no hook (holds a Python reference: released under the GIL)
