@@ -773,9 +773,15 @@ def make_humidity(test, built, solver):
     solver's planned times."""
     from .dem import humidity
     t0 = time.time()
+    swelling = [k for k in built.kinds.values() if k.swelling]
+    xi = None
+    if swelling:  # the swelling kinds share the scenario's kinetics and temperatures
+        k = swelling[0]
+        xi = lambda t: paper.larive_xi_under(t, k.tauC, k.tauL, list(k.temperatureDays), list(k.temperatures),  # noqa: E731
+                                             T0=k.referenceTemperature, Uc=k.Uc, UL=k.UL)
     driver = humidity.HumidityDriver(built.assembly, built.scene, solver, test.humidity_history(), test.humidity_initial,
                                      humidity.Coupling(test.humidity_exponent, {**humidity.DEFAULT_SHRINKAGE, **test.shrinkage}),
-                                     steps_per_decade=test.humidity_steps_per_decade)
+                                     steps_per_decade=test.humidity_steps_per_decade, xi=xi)
     hist = driver.history
     print(f"swelldem: set-up: moisture {len(hist.times_days) - 1} steps, {int(np.sum(hist.iterations))} Newton iterations, "
           f"h at the end {driver.mean_h()['specimen'][-1]:.3f} (specimen mean), {time.time() - t0:.1f} s", flush=True)

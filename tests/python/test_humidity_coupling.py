@@ -206,3 +206,14 @@ def test_a_killed_drying_run_resumed_equals_the_uninterrupted_one(yade_run, tmp_
     assert ref["per_kind"]["ITZ"]["broken"][-1] > 0
     for key in ("times_days", "swelling_strain_x", "swelling_strain_y", "per_kind", "humidity"):
         assert got[key] == ref[key], key
+
+
+def test_moisture_grid_keeps_every_physical_time_and_every_ambient_breakpoint():
+    from swelldem.dem.humidity import substeps
+    times = np.array([1.0, 10.0, 100.0, 1000.0])
+    grid, index = substeps(times, 4, breakpoints=[0.5, 37.0, 38.0, 100.0, 2000.0])
+    assert np.array_equal(grid[index], times)
+    assert {37.0, 38.0} <= set(grid.tolist()) and 0.5 not in grid and 2000.0 not in grid
+    assert np.all(np.diff(grid) > 0)
+    # 4 a decade, each step one decade: 4 substeps, the second decade 2 more at the breakpoints
+    assert np.diff(index).tolist() == [4, 6, 4]

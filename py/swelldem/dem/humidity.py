@@ -12,8 +12,9 @@ contact up (after the solver's stepHook), so both solvers see the same loads.
 
 - A contact's h: the mean of its two particles' h; an ITZ contact takes its mortar particle's
   (the interfacial zone is cement paste, whose water is the mortar's).
-- Swelling: the increment of a step from t_{k-1} to t_k is d_inf f dxi with f the mean of f(h) at
-  the two ends (the trapezoidal rule on the step), f(h) = h^m (Capra and Bournazel's form, used
+- Swelling: the increment of a step from t_{k-1} to t_k is d_inf f dxi with f the mean of f(h)
+  over the step's moisture substeps weighted by the swelling each sees (the trapezoidal rule in
+  xi), f(h) = h^m (Capra and Bournazel's form, used
   by Saouma and Perotti 2006). Gel formed in wet steps stays when the contact dries later.
 - Drying shrinkage: the imposed free opening at t_k is -k_sh L (h_c(t_start) - h_c(t_k)), L the
   contact's length, k_sh its kind's coefficient [strain per unit of h]: the drop of h since the
@@ -41,19 +42,23 @@ def _yade():
     return require("swelldem.dem.humidity")
 
 
-def substeps(times, steps_per_decade):
+def substeps(times, steps_per_decade, breakpoints=()):
     """The moisture grid of physical times `times` [day]: each interval split geometrically into
-    ceil(steps_per_decade x its decades) steps (linearly from t = 0). Returns (grid, index of each
-    time of `times` in grid)."""
+    ceil(steps_per_decade x its decades) steps (linearly from t = 0), and split again at every
+    breakpoint inside it (the days of an ambient history: a wet spell between two steps is not
+    stepped over). Returns (grid, index of each time of `times` in grid)."""
+    breaks = np.unique(np.asarray(breakpoints, dtype=float))
     grid, index = [float(times[0])], [0]
     for a, b in zip(times[:-1], times[1:]):
         if a > 0:
             n = max(1, math.ceil(steps_per_decade * math.log10(b / a) - 1e-9))
-            grid.extend((a * (b / a) ** (np.arange(1, n + 1) / n)).tolist())
+            pts = a * (b / a) ** (np.arange(1, n) / n)
         else:
             n = max(1, math.ceil(steps_per_decade))
-            grid.extend((a + (b - a) * np.arange(1, n + 1) / n).tolist())
-        grid[-1] = float(b)
+            pts = a + (b - a) * np.arange(1, n) / n
+        inner = breaks[(breaks > a * (1 + 1e-9)) & (breaks < b * (1 - 1e-9))]
+        pts = np.unique(np.concatenate([pts, inner]))
+        grid.extend(pts.tolist() + [float(b)])
         index.append(len(grid) - 1)
     return np.array(grid), np.array(index)
 
@@ -76,11 +81,12 @@ class HumidityDriver:
     solver's coming step. faces: {face: h or (days, h)}; h0: the initial h, one number or one per
     particle."""
 
-    def __init__(self, assembly, yscene, solver, faces, h0, coupling, steps_per_decade=40.0, kinds=None):
+    def __init__(self, assembly, yscene, solver, faces, h0, coupling, steps_per_decade=40.0, kinds=None, xi=None):
         self.solver, self.coupling = solver, coupling
         self.network = moisture.MoistureNetwork(assembly, kinds)
         self.times = np.array(solver.plannedTimes, dtype=float)
-        grid, index = substeps(self.times, steps_per_decade)
+        breakpoints = [d for v in faces.values() if isinstance(v, (tuple, list)) for d in v[0]]
+        grid, index = substeps(self.times, steps_per_decade, breakpoints)
         hist = self.network.run(grid, h0, faces)
         self.history = hist
         self.h = hist.h[index]  # (times, particles)
@@ -102,11 +108,31 @@ class HumidityDriver:
         swells = np.array([p.swellingDispInf > 0 for p in phys])
         self.swelling = [p for p, s in zip(phys, swells) if s]
         self.shrinking = [p for p, k in zip(phys, ksh) if k > 0]
-        f = coupling.swelling_factor(hc[:, swells])
-        self.factor = 0.5 * (f[:-1] + f[1:])  # per step: the trapezoidal mean of f over it
+        self.factor = self._step_factors(hist.h, index, i[swells], j[swells], itz[swells], mortar_end[swells], grid, xi)
         sh = ksh > 0
         lengths = np.array([p.length for p in self.shrinking])
         self.opening = -ksh[sh] * lengths * (hc[0, sh] - hc[:, sh])  # per time: the total imposed opening [m]
+
+    def _step_factors(self, h_grid, index, i, j, itz, mortar_end, grid, xi):
+        """Per physical step and swelling contact, f averaged over the step's moisture substeps,
+        each weighted by the swelling it sees: sum_s (f_s + f_(s+1))/2 (xi_(s+1) - xi_s) / (xi_end -
+        xi_start), the trapezoidal rule in xi (xi: the swelling kinetics' xi(t) [-] of the run, a
+        callable of days; none: weights in time). Written 1 - sum w (1 - f) so that f = 1 gives 1
+        exactly (the saturated run bit for bit)."""
+        weight_of = xi if xi is not None else (lambda t: np.asarray(t, dtype=float))
+        w_grid = weight_of(grid)
+        out = np.empty((len(index) - 1, len(i)))
+        for k in range(len(index) - 1):
+            s = slice(index[k], index[k + 1] + 1)
+            hg = h_grid[s]
+            hc = 0.5 * (hg[:, i] + hg[:, j])
+            hc[:, itz] = hg[:, mortar_end[itz]]
+            f = self.coupling.swelling_factor(hc)
+            dw = np.diff(w_grid[s])
+            total = dw.sum()
+            w = dw / total if total > 0 else np.full(len(dw), 1.0 / len(dw))
+            out[k] = 1.0 - w @ (1.0 - 0.5 * (f[:-1] + f[1:]))
+        return out
 
     @property
     def n_steps(self):
