@@ -217,3 +217,23 @@ def test_moisture_grid_keeps_every_physical_time_and_every_ambient_breakpoint():
     assert np.all(np.diff(grid) > 0)
     # 4 a decade, each step one decade: 4 substeps, the second decade 2 more at the breakpoints
     assert np.diff(index).tolist() == [4, 6, 4]
+
+
+def test_step_factor_is_f_integrated_over_the_swelling_of_the_step():
+    from swelldem import paper
+    from swelldem.dem.humidity import step_factor
+    # h drops linearly in time from 1 to 0.6 over a step from 2000 to 8000 days of ASR kinetics,
+    # f = h^8; the reference: the integral of f dxi / delta xi by fine quadrature (the closed-form xi)
+    tc, tl, _ = paper.KINETICS["asr"]
+    xi = lambda t: (1 - np.exp(-t / tc)) / (1 + np.exp(-(t - tl) / tc))  # noqa: E731
+    h = lambda t: 1.0 - 0.4 * (t - 2000.0) / 6000.0  # noqa: E731
+    fine = np.linspace(2000.0, 8000.0, 200001)
+    ref = np.trapz(h(fine) ** 8 * np.gradient(xi(fine), fine), fine) / (xi(8000.0) - xi(2000.0))
+    for n, limit in ((4, 0.106), (16, 6.6e-3), (64, 4.2e-4)):
+        t = np.linspace(2000.0, 8000.0, n + 1)
+        got = step_factor((h(t) ** 8)[:, None], xi(t))[0]
+        # measured: 7.0e-2, 4.4e-3, 2.8e-4 relative (second order in the substeps); limits 1.5x
+        assert abs(got / ref - 1) < limit, n
+    assert step_factor(np.ones((5, 3)), [0.0, 0.1, 0.3, 0.35, 0.9]).tolist() == [1.0, 1.0, 1.0]
+    # weights in time where xi does not move (no swelling in the step): the plain mean
+    assert step_factor(np.array([[1.0], [0.5], [0.0]]), [0.2, 0.2, 0.2])[0] == pytest.approx(0.5)

@@ -74,6 +74,18 @@ class Coupling:
         return np.asarray(h, dtype=float) ** self.exponent
 
 
+def step_factor(f, w):
+    """One step's swelling factor: f [-] at the step's moisture times (rows; a column per contact)
+    averaged by the trapezoidal rule in w (xi, or time), the increments of w [-] at those times
+    (w increasing: equal weights where it does not). 1 - sum w (1 - f), so that f = 1 gives 1
+    exactly."""
+    f, w = np.asarray(f, dtype=float), np.asarray(w, dtype=float)
+    dw = np.diff(w)
+    total = dw.sum()
+    share = dw / total if total > 0 else np.full(len(dw), 1.0 / len(dw))
+    return 1.0 - share @ (1.0 - 0.5 * (f[:-1] + f[1:]))
+
+
 class HumidityDriver:
     """The moisture of a built scene: its h history (MoistureNetwork.run on the solver's planned
     times, substepped) and, per physical step, the contacts' swelling factors and imposed
@@ -127,11 +139,7 @@ class HumidityDriver:
             hg = h_grid[s]
             hc = 0.5 * (hg[:, i] + hg[:, j])
             hc[:, itz] = hg[:, mortar_end[itz]]
-            f = self.coupling.swelling_factor(hc)
-            dw = np.diff(w_grid[s])
-            total = dw.sum()
-            w = dw / total if total > 0 else np.full(len(dw), 1.0 / len(dw))
-            out[k] = 1.0 - w @ (1.0 - 0.5 * (f[:-1] + f[1:]))
+            out[k] = step_factor(self.coupling.swelling_factor(hc), w_grid[s])
         return out
 
     @property
