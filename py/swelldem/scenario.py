@@ -328,16 +328,18 @@ class SwellingTest:
 T_MIN_C, T_MAX_C, KELVIN = -273.15, 100.0, 273.15
 
 
-def read_temperature_csv(path):
-    """(days [day], temperatures [C]) of a temperature history file: one row 'day, deg C' per line,
-    blank lines and '#' comments skipped; at least one row, days >= 0 and strictly increasing,
-    T_MIN_C < T <= T_MAX_C. OptionError naming the file or the line otherwise."""
+def read_history_csv(path, name, columns, check_value, file_allowed):
+    """(days [day], values) of a history file: one row 'day, value' per line (`columns` names
+    them, e.g. 'day, deg C'), blank lines and '#' comments skipped; at least one row, days >= 0
+    and strictly increasing, each value checked by check_value(line number, value). OptionError
+    naming `name` (the option) with the file or the line otherwise; file_allowed: what the option
+    takes, for a file that cannot be read."""
     try:
         with open(path, encoding="utf-8") as f:
             lines = f.read().splitlines()
     except (OSError, UnicodeDecodeError) as e:
-        _bad("temperature_csv", path, f"a readable text file of rows 'day, deg C' ({getattr(e, 'strerror', None) or e})")
-    days, celsius = [], []
+        _bad(name, path, f"{file_allowed} ({getattr(e, 'strerror', None) or e})")
+    days, values = [], []
     for n, line in enumerate(lines, 1):
         text = line.split("#", 1)[0].strip()
         if not text:
@@ -346,21 +348,28 @@ def read_temperature_csv(path):
         try:
             if len(cells) != 2:
                 raise ValueError(text)
-            day, temp = float(cells[0]), float(cells[1])
+            day, value = float(cells[0]), float(cells[1])
         except ValueError:
-            _bad(f"temperature_csv line {n}", line, "two numbers 'day, deg C'")
+            _bad(f"{name} line {n}", line, f"two numbers '{columns}'")
         if days:
-            options.number(f"temperature_csv day (line {n})", day, lo=days[-1], unit="day",
+            options.number(f"{name} day (line {n})", day, lo=days[-1], unit="day",
                            allowed=f"day > {days[-1]:g}, the previous row's (days strictly increasing) [day]")
         else:
-            options.number(f"temperature_csv day (line {n})", day, lo=0, lo_incl=True, unit="day")
-        options.number(f"temperature_csv temperature (line {n})", temp, lo=T_MIN_C, hi=T_MAX_C, hi_incl=True,
-                       allowed=f"{T_MIN_C:g} < T <= {T_MAX_C:g} [C] (above 0 K, at most 100 C)")
+            options.number(f"{name} day (line {n})", day, lo=0, lo_incl=True, unit="day")
+        check_value(n, value)
         days.append(day)
-        celsius.append(temp)
+        values.append(value)
     if not days:
-        _bad("temperature_csv", path, "a file with at least one row 'day, deg C'")
-    return days, celsius
+        _bad(name, path, f"a file with at least one row '{columns}'")
+    return days, values
+
+
+def read_temperature_csv(path):
+    """(days [day], temperatures [C]) of a temperature history file (read_history_csv, rows
+    'day, deg C'), T_MIN_C < T <= T_MAX_C."""
+    return read_history_csv(path, "temperature_csv", "day, deg C", lambda n, t: options.number(
+        f"temperature_csv temperature (line {n})", t, lo=T_MIN_C, hi=T_MAX_C, hi_incl=True,
+        allowed=f"{T_MIN_C:g} < T <= {T_MAX_C:g} [C] (above 0 K, at most 100 C)"), "a readable text file of rows 'day, deg C'")
 
 
 def _number_or_text(value):
@@ -374,36 +383,11 @@ def _number_or_text(value):
 
 
 def read_humidity_csv(path, face):
-    """(days [day], h [-]) of an ambient humidity history file for `face`: one row 'day, h' per
-    line, days >= 0 strictly increasing, 0 < h <= 1; '#' starts a comment. ValueError in the one
-    message form, naming the file, line and value."""
+    """(days [day], h [-]) of an ambient humidity history file for `face` (read_history_csv, rows
+    'day, h'), 0 < h <= 1."""
     name = f"humidity_faces {face}"
-    try:
-        with open(path) as f:
-            lines = f.readlines()
-    except OSError as e:
-        _bad(name, path, f"a number in (0, 1] or a readable text file of rows 'day, h' ({getattr(e, 'strerror', None) or e})")
-    days, hs = [], []
-    for n, line in enumerate(lines, 1):
-        line = line.split("#")[0].strip()
-        if not line:
-            continue
-        parts = [p for p in re.split(r"[,;\s]+", line) if p]
-        try:
-            day, h = (float(p) for p in parts)
-        except ValueError:
-            _bad(f"{name} line {n}", line, "two numbers 'day, h'")
-        if days:
-            options.number(f"{name} day (line {n})", day, lo=days[-1], unit="day",
-                           allowed=f"{days[-1]:g} < day < inf [day] (strictly increasing)")
-        else:
-            options.number(f"{name} day (line {n})", day, lo=0, lo_incl=True, unit="day")
-        options.number(f"{name} h (line {n})", h, lo=0, hi=1, hi_incl=True)
-        days.append(day)
-        hs.append(h)
-    if not days:
-        _bad(name, path, "a file with at least one row 'day, h'")
-    return days, hs
+    return read_history_csv(path, name, "day, h", lambda n, h: options.number(f"{name} h (line {n})", h, lo=0, hi=1, hi_incl=True),
+                            "a number in (0, 1] or a readable text file of rows 'day, h'")
 
 
 def parse_kind_param(text):

@@ -150,9 +150,9 @@ def test_bad_humidity_input_is_refused_before_any_work(argv, message):
 
 
 @pytest.mark.parametrize("rows, message", [
-    ("0, 0.9\n10, 0.8\n5, 0.7\n", "humidity_faces x- day (line 3) = 5.0 is out of range; allowed: 10 < day < inf [day] (strictly increasing)"),
+    ("0, 0.9\n10, 0.8\n5, 0.7\n", "humidity_faces x- day (line 3) = 5.0 is out of range; allowed: day > 10, the previous row's (days strictly increasing) [day]"),
     ("0, 0.9\n10, 1.3\n", "humidity_faces x- h (line 2) = 1.3"),
-    ("0 0.9 7\n", "humidity_faces x- line 1 = '0 0.9 7'"),
+    ("0, 0.9, 7\n", "humidity_faces x- line 1 = '0, 0.9, 7'"),
     ("# nothing\n", "a file with at least one row 'day, h'"),
 ])
 def test_bad_humidity_history_is_refused(tmp_path, rows, message):
@@ -167,7 +167,7 @@ def test_bad_humidity_history_is_refused(tmp_path, rows, message):
 def test_humidity_history_file_is_read(tmp_path):
     from swelldem import scenario
     path = tmp_path / "rh.csv"
-    path.write_text("# day, h\n0, 0.95\n100; 0.6\n1000 0.7\n")
+    path.write_text("# day, h\n0, 0.95\n\n100, 0.6  # dry spell\n1000,0.7\n")
     assert scenario.SwellingTest(humidity_faces={"y+": str(path)}).humidity_history() == {"y+": ([0.0, 100.0, 1000.0], [0.95, 0.6, 0.7])}
 
 
