@@ -1032,10 +1032,14 @@ def differing_settings(runs):
     """The settings (config entries of results.json, but where the run wrote) whose values differ
     between the runs (results dicts), in name order: what a comparison has to name so that a reader
     knows what was varied (e.g. ['kind_params'] for a sweep of the ITZ strength)."""
+    from dataclasses import asdict
+    from .scenario import VALUE_BEFORE_FIELD, SwellingTest
     configs = [r.get("config") or {} for r in runs]
     keys = sorted(set().union(*configs) - set(_NOT_CONDITIONS)) if configs else []
     text = lambda v: json.dumps(v, sort_keys=True, default=str)  # noqa: E731
-    return [k for k in keys if len({text(c.get(k)) for c in configs}) > 1]
+    # a field a run's record lacks (made before the field existed) holds what that swelldem did
+    before = {**json.loads(json.dumps(asdict(SwellingTest()), default=float)), **VALUE_BEFORE_FIELD}
+    return [k for k in keys if len({text(c.get(k, before.get(k))) for c in configs}) > 1]
 
 
 def setting_text(res, key):

@@ -237,3 +237,17 @@ def test_step_factor_is_f_integrated_over_the_swelling_of_the_step():
     assert step_factor(np.ones((5, 3)), [0.0, 0.1, 0.3, 0.35, 0.9]).tolist() == [1.0, 1.0, 1.0]
     # weights in time where xi does not move (no swelling in the step): the plain mean
     assert step_factor(np.array([[1.0], [0.5], [0.0]]), [0.2, 0.2, 0.2])[0] == pytest.approx(0.5)
+
+
+def test_a_run_recorded_before_the_moisture_fields_reads_as_saturated():
+    """A results.json written before the humidity fields existed is what that swelldem did: no
+    moisture model. Comparisons of runs name the humidity settings only where they differ."""
+    from swelldem import report, study
+    old = {"config": {"scenario": "isr", "seed": 1}}
+    new = {"config": {"scenario": "isr", "seed": 1, "humidity_faces": {}, "humidity_initial": 1.0, "shrinkage": {}}}
+    dry = {"config": {"scenario": "isr", "seed": 1, "humidity_faces": {"x-": 0.5}}}
+    assert report.differing_settings([old, new]) == []
+    assert report.differing_settings([old, dry]) == ["humidity_faces"]
+    assert study.differing(old["config"], {"humidity_faces": {}, "humidity_initial": 1.0}) == {}
+    assert report.humidity_conditions(old["config"]) == [] and report.humidity_conditions(dry["config"]) == [
+        "x- exposed to h 0.5", "h initial 1"]
