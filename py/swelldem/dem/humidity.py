@@ -10,8 +10,8 @@ section 5). Before each physical step the driver sets two settings of every cont
 (SwellPhys.swellFactor and imposedOpening); the contact law applies them when the step sets the
 contact up (after the solver's stepHook), so both solvers see the same loads.
 
-- A contact's h: the mean of its two particles' h; an ITZ contact takes its mortar particle's
-  (the interfacial zone is cement paste, whose water is the mortar's).
+- A contact's h (contact_h): the mean of its two particles' h; an ITZ contact takes its mortar
+  particle's (the interfacial zone is cement paste, whose water is the mortar's).
 - Swelling: the increment of a step from t_{k-1} to t_k is d_inf f dxi with f the mean of f(h)
   over the step's moisture substeps weighted by the swelling each sees (the trapezoidal rule in
   xi), f(h) = h^m (Capra and Bournazel's form, used
@@ -74,6 +74,14 @@ class Coupling:
         return np.asarray(h, dtype=float) ** self.exponent
 
 
+def contact_h(h, i, j, itz, mortar_end):
+    """h [-] of contacts (i, j) from their particles' h (rows: times): the mean of the two, and for
+    an ITZ contact (itz) the h of its mortar particle (mortar_end)."""
+    hc = 0.5 * (h[:, i] + h[:, j])
+    hc[:, itz] = h[:, mortar_end[itz]]
+    return hc
+
+
 def step_factor(f, w):
     """One step's swelling factor: f [-] at the step's moisture times (rows; a column per contact)
     averaged by the trapezoidal rule in w (xi, or time), the increments of w [-] at those times
@@ -109,11 +117,9 @@ class HumidityDriver:
         phys = [O.interactions[int(i), int(j)].phys for i, j in pairs]
         self.kind = np.array([p.kindId for p in phys], dtype=np.int64)
         i, j = pairs[:, 0], pairs[:, 1]
-        hc = 0.5 * (self.h[:, i] + self.h[:, j])
         itz = self.kind == paper.KIND_IDS["ITZ"]
         mortar_end = np.where(np.asarray(assembly.aggregate_id)[i] < 0, i, j)
-        hc[:, itz] = self.h[:, mortar_end[itz]]
-        self.h_contact = hc
+        self.h_contact = hc = contact_h(self.h, i, j, itz, mortar_end)
         ksh = np.zeros(len(phys))
         for name, k in coupling.shrinkage.items():
             ksh[self.kind == paper.KIND_IDS[name]] = k
@@ -136,10 +142,7 @@ class HumidityDriver:
         out = np.empty((len(index) - 1, len(i)))
         for k in range(len(index) - 1):
             s = slice(index[k], index[k + 1] + 1)
-            hg = h_grid[s]
-            hc = 0.5 * (hg[:, i] + hg[:, j])
-            hc[:, itz] = hg[:, mortar_end[itz]]
-            out[k] = step_factor(self.coupling.swelling_factor(hc), w_grid[s])
+            out[k] = step_factor(self.coupling.swelling_factor(contact_h(h_grid[s], i, j, itz, mortar_end)), w_grid[s])
         return out
 
     @property
