@@ -22,7 +22,7 @@ import numpy as np
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, "py"))
-from swelldem import meso, options, paper, report, scenario, study  # noqa: E402
+from swelldem import meso, options, paper, report, study  # noqa: E402
 
 ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
 ap.add_argument("--scenario", choices=tuple(paper.SCENARIOS), default="asr-fine")
@@ -121,10 +121,6 @@ with open(base + ".csv", "w", newline="") as f:
         w.writerow([n, f"{day:.6g}", "broken [%]"] + [f"{v:.3f}" for v in broken_share(n, step)])
 
 
-def expansion(r):
-    return np.array(r["times_days"]), 0.5 * (np.array(r["swelling_strain_x"]) + np.array(r["swelling_strain_y"]))
-
-
 def kinds_broken(r, k):
     return {n: 100 * r["per_kind"][n]["broken"][k] / max(1, r["n_contacts_by_kind"][n]) for n in paper.KIND_NAMES}
 
@@ -137,7 +133,7 @@ with open(base + ".md", "w") as f:
     f.write("| run | expansion at the end [1e-6] | largest expansion [1e-6] | broken MORTAR / ITZ / AGG [%] at "
             f"{day:.4g} d | broken in the skin / core [%] | wall [s] |\n|---|---|---|---|---|---|\n")
     for n in ("sealed", "drying"):
-        t, e = expansion(res[n])
+        t, e = report.mean_expansion(res[n])
         kb = kinds_broken(res[n], step)
         bs = broken_share(n, step)
         f.write(f"| {n} | {e[-1] * 1e6:.0f} | {e.max() * 1e6:.0f} | {kb['MORTAR']:.1f} / {kb['ITZ']:.1f} / {kb['AGG']:.1f} | "
@@ -189,7 +185,7 @@ ax.legend(fontsize=7, ncol=2)
 ax.grid(alpha=0.3)
 ax = fig.add_subplot(gs[1, 4:6])
 for n, style in (("sealed", "k-"), ("drying", "b-")):
-    t, e = expansion(res[n])
+    t, e = report.mean_expansion(res[n])
     ax.semilogx(t, e * 1e6, style, label=f"{n}: expansion")
 ax.axhline(0, color="0.5", lw=0.8)
 ax.set(xlabel="time [day]", ylabel="expansion (mean of x and y) [1e-6]", title="expansion; broken share across x at the map's time")

@@ -24,7 +24,7 @@ import numpy as np
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, "py"))
-from swelldem import options, paper, report, scenario, study  # noqa: E402
+from swelldem import options, report, scenario, study  # noqa: E402
 
 ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
 ap.add_argument("--humidities", type=float, nargs="+", default=[0.6, 0.8, 0.9, 1.0], help="relative humidities h of the runs [-]")
@@ -86,28 +86,19 @@ for m, h in keys:
 saturated = next((r for (m, h), r in results.items() if h == 1.0), None)
 
 
-def expansion(res):
-    """Mean of the x and y swelling strains [-] at each physical time [day]."""
-    return np.array(res["times_days"]), 0.5 * (np.array(res["swelling_strain_x"]) + np.array(res["swelling_strain_y"]))
-
-
 def mean_h(res):
     return res["humidity"]["mean_h"]["specimen"][-1] if "humidity" in res else 1.0
-
-
-def broken(res):
-    return 100 * sum(res["per_kind"][k]["broken"][-1] for k in paper.KIND_NAMES) / max(1, sum(res["n_contacts_by_kind"].values()))
 
 
 os.makedirs(args.out, exist_ok=True)
 base = os.path.join(args.out, "expansion_vs_humidity")
 m_exp = args.humidity_exponent
-e_sat = expansion(saturated)[1][-1] if saturated else float("nan")
+e_sat = report.mean_expansion(saturated)[1][-1] if saturated else float("nan")
 rows = []
 for (mode, h), r in results.items():
-    e = expansion(r)[1]
+    e = report.mean_expansion(r)[1]
     rows.append({"run": run_name(mode, h), "mode": "saturated" if h == 1.0 else mode, "h": h, "final_1e-6": e[-1] * 1e6,
-                 "max_1e-6": e.max() * 1e6, "ratio": e[-1] / e_sat, "f_h": h ** m_exp, "h_end": mean_h(r), "broken_pct": broken(r),
+                 "max_1e-6": e.max() * 1e6, "ratio": e[-1] / e_sat, "f_h": h ** m_exp, "h_end": mean_h(r), "broken_pct": report.broken_share_pct(r),
                  "wall_s": r["wall_s"]})
 rows.sort(key=lambda r: (r["mode"], r["h"]))
 with open(base + ".csv", "w", newline="") as f:
@@ -135,7 +126,7 @@ fig, (ax, axr) = plt.subplots(1, 2, figsize=(12.5, 4.8))
 hs = sorted({h for _, h in keys})
 colors = dict(zip(hs, plt.cm.viridis(np.linspace(0.9, 0.1, len(hs)))))
 for (mode, h), r in sorted(results.items(), key=lambda kv: (kv[0][1], kv[0][0])):
-    t, e = expansion(r)
+    t, e = report.mean_expansion(r)
     style = "-" if mode == "held" or h == 1.0 else "--"
     ax.semilogx(t, e * 1e6, style, marker="o", ms=2.5, color=colors[h], label=f"{run_name(mode, h)}")
 ax.axhline(0, color="0.5", lw=0.8)

@@ -76,11 +76,6 @@ def larive(t, tc, tl):
     return (1 - np.exp(-t / tc)) / (1 + np.exp(-(t - tl) / tc))
 
 
-def expansion(res):
-    """Mean of the x and y swelling strains [-] at each physical time [day]."""
-    return np.array(res["times_days"]), 0.5 * (np.array(res["swelling_strain_x"]) + np.array(res["swelling_strain_y"]))
-
-
 def time_to(t, e, level):
     """First time [day] the expansion reaches `level` (linear in log time between steps)."""
     i = int(np.argmax(e >= level))
@@ -94,23 +89,22 @@ def time_to(t, e, level):
 
 os.makedirs(args.out, exist_ok=True)
 base = os.path.join(args.out, "expansion_vs_temperature")
-times = expansion(results[args.temperatures_c[0]])[0]
+times = report.mean_expansion(results[args.temperatures_c[0]])[0]
 with open(base + ".csv", "w", newline="") as f:
     w = csv.writer(f)
     w.writerow(["time_days"] + [f"expansion_{T:g}C_1e-6" for T in args.temperatures_c])
-    curves = {T: expansion(results[T])[1] for T in args.temperatures_c}
+    curves = {T: report.mean_expansion(results[T])[1] for T in args.temperatures_c}
     for i, t in enumerate(times):
         w.writerow([f"{t:.6g}"] + [f"{curves[T][i] * 1e6:.3f}" for T in args.temperatures_c])
 
 rows = []
 for T in args.temperatures_c:
-    t, e = expansion(results[T])
+    t, e = report.mean_expansion(results[T])
     tc, tl = taus(T)
     final = e[-1]
     rows.append({"T_C": T, "tau_c_d": tc, "tau_L_d": tl, "t10_d": time_to(t, e, 0.1 * final), "t50_d": time_to(t, e, 0.5 * final),
                  "t90_d": time_to(t, e, 0.9 * final), "final_1e-6": final * 1e6,
-                 "broken_pct": 100 * sum(results[T]["per_kind"][k]["broken"][-1] for k in paper.KIND_NAMES) /
-                 max(1, sum(results[T]["n_contacts_by_kind"].values())),
+                 "broken_pct": report.broken_share_pct(results[T]),
                  "wall_s": results[T]["wall_s"]})
 with open(base + ".md", "w") as f:
     r0 = results[args.temperatures_c[0]]
@@ -133,7 +127,7 @@ fig, (ax, axn) = plt.subplots(1, 2, figsize=(12, 4.6))
 colors = plt.cm.plasma(np.linspace(0.0, 0.8, len(args.temperatures_c)))
 eps_inf = r0["config"]["eps_inf"]
 for T, c in zip(args.temperatures_c, colors):
-    t, e = expansion(results[T])
+    t, e = report.mean_expansion(results[T])
     tc, tl = taus(T)
     ax.semilogx(t, e * 1e6, "o-", ms=3, color=c, label=f"{T:g} C: specimen")
     axn.semilogx(t, e / e[-1], "o-", ms=3, color=c, label=f"{T:g} C: specimen / its final value")

@@ -215,6 +215,17 @@ def run_conditions(res):
     return out
 
 
+def mean_expansion(res):
+    """(times [day], the mean of the x and y swelling strains [-] at each): a run's expansion as
+    the study scripts plot it."""
+    return np.array(res["times_days"]), 0.5 * (np.array(res["swelling_strain_x"]) + np.array(res["swelling_strain_y"]))
+
+
+def broken_share_pct(res):
+    """The share [%] of a run's MORTAR, ITZ and AGG contacts broken at its end."""
+    return 100 * sum(res["per_kind"][k]["broken"][-1] for k in KIND_NAMES) / max(1, sum(res["n_contacts_by_kind"].values()))
+
+
 def humidity_conditions(cfg):
     """The moisture settings of a run's config as short texts ([] for a saturated run): the exposed
     faces with their ambient h (or history file), the initial h, and the coupling where set away

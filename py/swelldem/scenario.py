@@ -404,17 +404,23 @@ def parse_kind_param(text):
     return kind.strip(), attr.strip(), value
 
 
-def parse_solver_param(text):
+def parse_name_value(text, option="solver_param", form="NAME=VALUE, e.g. fallbackIterations=3"):
     """'NAME=VALUE' -> (NAME, value); value a Python literal (5, 1e-6, True, [1.0, 2.0]) or else the
-    text itself (the plugin then refuses it if the setting takes no text)."""
+    text itself (the option's checks, or the plugin's, then refuse it where a number is due).
+    `option` and `form` name the option and its form in the message for text without '='."""
     name, eq, value = text.partition("=")
     if not (eq and name.strip()):
-        _bad("solver_param", text, "NAME=VALUE, e.g. fallbackIterations=3")
+        _bad(option, text, form)
     try:
         value = ast.literal_eval(value)
     except (ValueError, SyntaxError):
         pass
     return name.strip(), value
+
+
+def parse_solver_param(text):
+    """A --solver-param 'NAME=VALUE' (parse_name_value)."""
+    return parse_name_value(text)
 
 
 def add_arguments(parser):
@@ -472,12 +478,7 @@ def from_arguments(ns):
             _bad("humidity_faces face", face, "each face once")
         faces[face] = _number_or_text(value)
     kw["humidity_faces"] = faces
-    given, kw["shrinkage"] = kw["shrinkage"], {}
-    for text in given:
-        name, eq, value = text.partition("=")
-        if not (eq and name.strip()):
-            _bad("shrinkage", text, "KIND=VALUE, e.g. MORTAR=3e-3")
-        kw["shrinkage"][name.strip()] = _number_or_text(value.strip())
+    kw["shrinkage"] = dict(parse_name_value(text, "shrinkage", "KIND=VALUE, e.g. MORTAR=3e-3") for text in kw["shrinkage"])
     return SwellingTest(**kw)
 
 
@@ -779,7 +780,7 @@ def humidity_record(test, driver):
     run: the transport does not depend on the mechanics)."""
     hist = driver.history
     faces = {face: (v if not isinstance(v, tuple) else {"days": list(v[0]), "h": list(v[1])})
-             for face, v in test.humidity_history().items()}
+             for face, v in driver.faces.items()}
     return {"faces": faces, "sources": {f: str(v) for f, v in test.humidity_faces.items()},
             "h_initial": test.humidity_initial, "exponent": driver.coupling.exponent,
             "shrinkage_per_h": driver.coupling.shrinkage, "steps_per_decade": test.humidity_steps_per_decade,

@@ -102,7 +102,7 @@ class HumidityDriver:
     particle."""
 
     def __init__(self, assembly, yscene, solver, faces, h0, coupling, steps_per_decade=40.0, kinds=None, xi=None):
-        self.solver, self.coupling = solver, coupling
+        self.solver, self.coupling, self.faces = solver, coupling, faces
         self.network = moisture.MoistureNetwork(assembly, kinds)
         self.times = np.array(solver.plannedTimes, dtype=float)
         breakpoints = [d for v in faces.values() if isinstance(v, (tuple, list)) for d in v[0]]
