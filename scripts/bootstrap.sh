@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 # Installs every Debian package swelldem needs. Idempotent: when all are present it only checks.
 set -eu
-PACKAGES="yade cmake make g++ binutils pkg-config libeigen3-dev libboost-python-dev libboost-serialization-dev
+PACKAGES="yade cmake make g++ binutils pkg-config libeigen3-dev petsc-dev libboost-python-dev libboost-serialization-dev
 libcgal-dev libsuitesparse-dev libgmp-dev libmpfr-dev libgtest-dev libpython3.11-dev python3-numpy python3-scipy python3-matplotlib python3-pytest python3-pytest-xdist python3-vtk9 python3-distributed"
 missing=""
 for p in $PACKAGES; do

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "ImplicitLogTimeSolver.hpp"
 #include "core/Validate.hpp"
+#include "SparseSolver.hpp"
 #include <Eigen/CholmodSupport>
 #include <Eigen/Sparse>
 #include <algorithm>
@@ -46,6 +47,9 @@ struct ImplicitLinearSystem {
 	std::vector<char>                                  active;     // per contact: its core::ContactLaw::Mode
 	SpMat                                              K;
 	Eigen::CholmodDecomposition<SpMat, Eigen::Lower>   chol;
+	std::unique_ptr<swelldem::linalg::SparseSolver>    petsc; // instead of chol: linearSolver petsc-gamg or petsc-mumps
+	std::string                                        petscKind; // the kind petsc was opened for
+	bool                                               acrossInK = false; // K's values hold the 3D sliding contacts' across stiffness (factor())
 	std::vector<Eigen::VectorXd>                       z; // K^-1 u of each kept low-rank column (lowRankColumns), for the factor in hand
 	int                                                nEq = 0;
 	bool                                               haveFactor = false;
@@ -216,6 +220,14 @@ void ImplicitLogTimeSolver::postLoad()
 	core::require(stallTolerance >= 0 && stallTolerance < 1, "ImplicitLogTimeSolver.stallTolerance", stallTolerance, "0 <= stallTolerance < 1");
 	core::require(fallbackIterations >= 0, "ImplicitLogTimeSolver.fallbackIterations", fallbackIterations, ">= 0 (0: never)");
 	core::requireOpenInterval("ImplicitLogTimeSolver.fallbackTolerance", fallbackTolerance, 0, 1);
+	core::require(gamgAbove >= 0, "ImplicitLogTimeSolver.gamgAbove", gamgAbove, ">= 0");
+	if (linearSolver != "auto" && linearSolver != "cholmod" && linearSolver != "petsc-gamg" && linearSolver != "petsc-mumps")
+		throw std::invalid_argument("ImplicitLogTimeSolver.linearSolver = '" + linearSolver
+		                            + "' is not a linear solver; allowed: auto, cholmod, petsc-gamg, petsc-mumps");
+	if (linearSolver.rfind("petsc-", 0) == 0) {
+		const std::string why = swelldem::linalg::petscUnavailable();
+		if (!why.empty()) throw std::invalid_argument("ImplicitLogTimeSolver.linearSolver = '" + linearSolver + "': " + why);
+	}
 }
 
 string ImplicitLogTimeSolver::fallbackDetail() const
@@ -312,9 +324,13 @@ void ImplicitLogTimeSolver::numberEquations()
 	numberDofs(masks);
 	makePattern();
 	findSlots();
-	sys->chol.setMode(Eigen::CholmodSupernodalLLt);
-	sys->chol.analyzePattern(sys->K);
-	factorNonZeros = sys->chol.cholmod().lnz;
+	if (chosenLinearSolver() == "cholmod") {
+		sys->petsc.reset();
+		sys->chol.setMode(Eigen::CholmodSupernodalLLt);
+		sys->chol.analyzePattern(sys->K);
+		factorNonZeros = sys->chol.cholmod().lnz;
+	} else
+		openLinearSolver(), factorNonZeros = 0;
 	refactorSavedValues();
 	sys->active.assign(sys->contacts.size(), 0);
 	++analyses;
@@ -423,12 +439,8 @@ void ImplicitLogTimeSolver::refactorSavedValues()
 	if (graph == factoredGraph && factoredValues.size() == size_t(S.K.nonZeros())) {
 		const Eigen::VectorXd current = Eigen::Map<const Eigen::VectorXd>(S.K.valuePtr(), S.K.nonZeros());
 		std::copy(factoredValues.begin(), factoredValues.end(), S.K.valuePtr());
-		{
-			const SerialOpenMP serial;
-			S.chol.factorize(S.K);
-		}
+		S.haveFactor = factorValues();
 		std::copy(current.data(), current.data() + current.size(), S.K.valuePtr());
-		S.haveFactor = S.chol.info() == Eigen::Success;
 	} else
 		factoredValues.clear(), factoredStiffness.clear(), factoredDrift.clear(), factoredAcross.clear();
 	factoredGraph.swap(graph);
@@ -470,6 +482,7 @@ void ImplicitLogTimeSolver::startAssembly()
 	ImplicitLinearSystem& S = *sys;
 	double*               v = S.K.valuePtr();
 	std::fill(v, v + S.K.nonZeros(), 0.0);
+	S.acrossInK = false;
 	S.deltaDiag.assign(S.nEq, 0.0);
 	S.touched.clear();
 	S.columns.clear();
@@ -660,15 +673,14 @@ void ImplicitLogTimeSolver::factor()
 			factoredAcross[size_t(a[0])] = a[3];
 	} else if (!factoredDrift.empty())
 		factoredDrift.clear(), factoredAcross.clear();
+	S.acrossInK     = !S.across.empty();
 	const auto start = std::chrono::steady_clock::now();
-	{
-		const SerialOpenMP serial;
-		S.chol.factorize(S.K);
-	}
+	const bool ok    = factorValues();
 	factorSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 	++factorizations;
-	if (S.chol.info() != Eigen::Success)
-		fail("the tangent stiffness (" + std::to_string(S.nEq) + " equations) is not positive definite; CHOLMOD could not factor it");
+	if (!ok)
+		fail("the tangent stiffness (" + std::to_string(S.nEq) + " equations) is not positive definite; " + linearSolverUsed
+		     + " could not factor it");
 	factoredValues.assign(S.K.valuePtr(), S.K.valuePtr() + S.K.nonZeros());
 	factoredStiffness = S.stiffness;
 	S.haveFactor      = true;
@@ -684,14 +696,15 @@ Eigen::VectorXd ImplicitLogTimeSolver::solveWithCoupling(const Eigen::VectorXd& 
 	// makes the tangent unsymmetric (without it Newton converges only linearly, at rates up to 0.98
 	// an iteration, measured on 20 mm ISR cracking); the coupling is left out above maxSlidingExact
 	// sliding contacts.
-	ImplicitLinearSystem& S  = *sys;
-	Eigen::VectorXd       du = S.chol.solve(r);
+	ImplicitLinearSystem& S        = *sys;
 	long                  nSliding = 0;
 	for (const auto& col : S.columns)
 		nSliding += col.type == 2;
 	std::vector<const LowRankColumn*> use;
 	for (const auto& col : S.columns)
 		if (col.type != 2 || nSliding <= maxSlidingExact) use.push_back(&col);
+	if (S.petsc && S.petsc->iterative()) return krylovSolve(r, use);
+	Eigen::VectorXd du = directSolve(r);
 	if (use.empty()) return du;
 	// z = K_f^-1 u costs a solve. A column's z is kept with the factor, for the same contact, type
 	// and value (the u of its first iteration: the geometry's drift enters as the factor's does),
@@ -710,7 +723,7 @@ Eigen::VectorXd ImplicitLogTimeSolver::solveWithCoupling(const Eigen::VectorXd& 
 			for (size_t j : pending) {
 				Eigen::VectorXd u = Eigen::VectorXd::Zero(S.nEq);
 				columnOf(j, u);
-				S.z[j] = S.chol.solve(u);
+				S.z[j] = directSolve(u);
 			}
 		} else {
 			// A 3D cracking round has hundreds of sliding contacts' columns, and one solve of a
@@ -726,7 +739,7 @@ Eigen::VectorXd ImplicitLogTimeSolver::solveWithCoupling(const Eigen::VectorXd& 
 				Eigen::MatrixXd U = Eigen::MatrixXd::Zero(S.nEq, long(std::max<size_t>(n, 2)));
 				for (size_t i = 0; i < n; ++i)
 					columnOf(pending[first + i], U.col(long(i)));
-				const Eigen::MatrixXd Z = S.chol.solve(U);
+				const Eigen::MatrixXd Z = directSolve(U);
 				for (size_t i = 0; i < n; ++i)
 					S.z[pending[first + i]] = Z.col(long(i));
 			}
@@ -1255,9 +1268,158 @@ void ImplicitLogTimeSolver::action()
 		// contact's kink (settleKinks); the round's moves are solved as that LCP from now on.
 		if (merit > (1 - 1e-4 * lineAlpha) * lineRatio0) kinkRound = true;
 	}
+	// Inexact Newton (petsc-gamg): a move is solved to the relative residual that would bring a
+	// linear step to the tolerance (0.1 tolerance / ratio, at least 1e-8, at most 0.1), and while
+	// contacts change state, when the next residual depends more on the active set than on the move's
+	// accuracy, no further than Eisenstat and Walker's choice 2 (gamma 0.9, alpha 2) asks.
+	forcing = std::clamp(0.1 * tolerance / std::max(b.ratio, Real(1e-300)), Real(1e-8), Real(0.1));
+	if (activeChanges > 0 && lineRatio0 > 0 && lineAlpha > 0)
+		forcing = std::max(forcing, std::min(Real(0.1), Real(0.9) * (merit / lineRatio0) * (merit / lineRatio0)));
 	newtonStep();
 	lineAlpha  = 1;
 	lineRatio0 = merit;
+}
+
+} // namespace yade
+
+namespace yade {
+
+const std::string& ImplicitLogTimeSolver::chosenLinearSolver() const
+{
+	static const std::string cholmod = "cholmod", gamg = "petsc-gamg";
+	if (linearSolver != "auto") return linearSolver;
+	return nDim == 3 && sys && sys->nEq > gamgAbove ? gamg : cholmod;
+}
+
+void ImplicitLogTimeSolver::openLinearSolver()
+{
+	// The solver for the pattern just made, and the rigid-body modes GAMG's coarse levels must keep:
+	// every body translating (2D: x, y; 3D: x, y, z) and turning about the specimen's centre (2D: z;
+	// 3D: x, y, z), over the free equations; a turn moves a body by w x (p - c) and turns it by w.
+	ImplicitLinearSystem& S    = *sys;
+	const std::string     kind = chosenLinearSolver() == "petsc-gamg" ? "gamg" : "mumps";
+	try {
+		if (!S.petsc || S.petscKind != kind) S.petsc = swelldem::linalg::openPetsc(kind), S.petscKind = kind;
+		S.petsc->setMatrix(S.nEq, S.K.outerIndexPtr(), S.K.innerIndexPtr(), S.K.valuePtr());
+		if (!S.petsc->iterative()) return;
+		const auto& bodies = scene->bodies->body;
+		const int   nb     = S.nb, nModes = nb == 6 ? 6 : 3, nt = nb == 6 ? 3 : 2;
+		Vector3r    c      = Vector3r::Zero();
+		long        n      = 0;
+		for (const auto& b : bodies)
+			if (b && !b->isClump()) c += b->state->se3.position, ++n;
+		if (n > 0) c /= Real(n);
+		std::vector<double> modes(size_t(nModes) * S.nEq, 0.0);
+		auto                set = [&](int mode, int id, int axis, double value) {
+                        const int e = S.dofOf[nb * id + axis];
+                        if (e >= 0) modes[size_t(mode) * S.nEq + e] = value;
+		};
+		for (const auto& b : bodies) {
+			if (!b || b->isClump()) continue;
+			const Vector3r p = b->state->se3.position - c;
+			for (int d = 0; d < nt; ++d)
+				set(d, b->id, d, 1.0);
+			if (nb == 3) {
+				set(2, b->id, 0, -p[1]), set(2, b->id, 1, p[0]), set(2, b->id, 2, 1.0);
+				continue;
+			}
+			for (int k = 0; k < 3; ++k) {
+				Vector3r w = Vector3r::Zero();
+				w[k]                = 1;
+				const Vector3r move = w.cross(p);
+				for (int d = 0; d < 3; ++d)
+					set(3 + k, b->id, d, move[d]);
+				set(3 + k, b->id, 3 + k, 1.0);
+			}
+		}
+		S.petsc->setNearNullSpace(nModes, modes.data());
+	} catch (const std::exception& e) {
+		fail(std::string("linear solver ") + chosenLinearSolver() + ": " + e.what());
+	}
+}
+
+bool ImplicitLogTimeSolver::factorValues()
+{
+	ImplicitLinearSystem& S = *sys;
+	linearSolverUsed        = chosenLinearSolver();
+	if (!S.petsc) {
+		const SerialOpenMP serial;
+		S.chol.factorize(S.K);
+		return S.chol.info() == Eigen::Success;
+	}
+	try {
+		S.petsc->setMatrix(S.nEq, S.K.outerIndexPtr(), S.K.innerIndexPtr(), S.K.valuePtr());
+		S.petsc->setup();
+	} catch (const std::exception& e) {
+		fail(std::string("linear solver ") + linearSolverUsed + ": " + e.what());
+	}
+	return true;
+}
+
+Eigen::MatrixXd ImplicitLogTimeSolver::directSolve(const Eigen::MatrixXd& b)
+{
+	ImplicitLinearSystem& S = *sys;
+	if (!S.petsc) return S.chol.solve(b);
+	Eigen::MatrixXd x(b.rows(), b.cols());
+	try {
+		for (long j = 0; j < b.cols(); ++j) {
+			const Eigen::VectorXd col = b.col(j);
+			Eigen::VectorXd       out(b.rows());
+			S.petsc->solve(col.data(), out.data(), 0.0, {}, true);
+			x.col(j) = out;
+		}
+	} catch (const std::exception& e) {
+		fail(std::string("linear solver ") + linearSolverUsed + ": " + e.what());
+	}
+	return x;
+}
+
+Eigen::VectorXd ImplicitLogTimeSolver::krylovSolve(const Eigen::VectorXd& r, const std::vector<const LowRankColumn*>& use)
+{
+	// The operator is the current tangent: K's values (with the 3D sliding contacts' stiffness across
+	// their slip, as a factor would have it) and every change since the preconditioner's set-up as
+	// its column; the preconditioner is GAMG's hierarchy of the last set-up, renewed where CHOLMOD
+	// would refactor. No column needs a solve of its own, as Woodbury's formula does with a factor.
+	ImplicitLinearSystem& S = *sys;
+	std::vector<double>   values(S.K.valuePtr(), S.K.valuePtr() + S.K.nonZeros());
+	if (!S.acrossInK && !S.across.empty()) {
+		const PairTable& P = *S.pairs;
+		for (const auto& a : S.across) {
+			const size_t c = size_t(a[0]);
+			Real         bn[12], bs[12], bs2[12], row[12];
+			contactRows(S.contacts[c], S.nb, bn, bs, bs2);
+			for (int k = 0; k < 12; ++k)
+				row[k] = -a[2] * bs[k] + a[1] * bs2[k];
+			const int* slot = &S.slots[P.size * c];
+			for (int k = 0; k < P.size; ++k)
+				if (slot[k] >= 0) values[size_t(slot[k])] += a[3] * row[P.a[k]] * row[P.b[k]];
+		}
+	}
+	std::vector<swelldem::linalg::RankOneTerm> terms(use.size());
+	bool                                       symmetric = true;
+	for (size_t i = 0; i < use.size(); ++i) {
+		std::copy(use[i]->eq, use[i]->eq + 12, terms[i].eq);
+		std::copy(use[i]->u, use[i]->u + 12, terms[i].u);
+		std::copy(use[i]->v, use[i]->v + 12, terms[i].v);
+		symmetric = symmetric && use[i]->type != 2;
+	}
+	Eigen::VectorXd du(S.nEq);
+	try {
+		S.petsc->setMatrix(S.nEq, S.K.outerIndexPtr(), S.K.innerIndexPtr(), values.data());
+		const auto report = S.petsc->solve(r.data(), du.data(), forcing, terms, symmetric);
+		++krylovSolves, krylovIterations += report.iterations;
+		if (!report.converged) {
+			++krylovFailures;
+			if (verbose) {
+				std::printf("swelldem: step %d/%d: the Krylov solve stopped at relative residual %.2e (asked %.1e) after %d iterations: %s\n",
+				            step, nSteps(), report.residual, double(forcing), report.iterations, report.reason.c_str());
+				std::fflush(stdout);
+			}
+		}
+	} catch (const std::exception& e) {
+		fail(std::string("linear solver ") + linearSolverUsed + ": " + e.what());
+	}
+	return du;
 }
 
 } // namespace yade

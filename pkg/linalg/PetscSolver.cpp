@@ -1,0 +1,299 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// libswelldem_petsc.so: SparseSolver over PETSc's C API (Debian's petsc-dev, real double, 32-bit
+// indices). One process, PETSC_COMM_SELF.
+#include "SparseSolver.hpp"
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numeric>
+#include <petscksp.h>
+#include <stdexcept>
+
+namespace swelldem::linalg {
+namespace {
+	static_assert(sizeof(PetscInt) == sizeof(int), "swelldem expects PETSc with 32-bit indices (Debian's petsc-dev)");
+	static_assert(std::is_same<PetscScalar, double>::value, "swelldem expects PETSc with real double scalars");
+
+	void check(PetscErrorCode code, const char* what)
+	{
+		if (code == 0) return;
+		const char* text = nullptr;
+		PetscErrorMessage(code, &text, nullptr);
+		throw std::runtime_error(std::string("PETSc failed in ") + what + ": " + (text ? text : "unknown error") + " (code "
+		                         + std::to_string(int(code)) + ")");
+	}
+
+	// PETSc is initialised once a process, without its signal handlers (YADE's and swelldem's
+	// SIGTERM handling stay in charge) and with its errors returned, not printed: each becomes an
+	// exception here, and the solver's message. Its options (PETSC_OPTIONS, e.g.
+	// -swelldem_pc_gamg_threshold 0.02) reach the solvers through the prefix swelldem_.
+	void initialise()
+	{
+		PetscBool done = PETSC_FALSE;
+		check(PetscInitialized(&done), "PetscInitialized");
+		if (done) return;
+		static char  arg0[] = "swelldem", arg1[] = "-no_signal_handler";
+		static char* args[] = { arg0, arg1, nullptr };
+		int          argc   = 2;
+		char**       argv   = args;
+		check(PetscInitialize(&argc, &argv, nullptr, nullptr), "PetscInitialize");
+		PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+	}
+
+	struct ShellContext {
+		Mat                             K = nullptr;
+		const std::vector<RankOneTerm>* terms = nullptr;
+	};
+
+	// y = K x + sum u (v . x)
+	PetscErrorCode shellMult(Mat A, Vec x, Vec y)
+	{
+		ShellContext* ctx = nullptr;
+		PetscCall(MatShellGetContext(A, &ctx));
+		PetscCall(MatMult(ctx->K, x, y));
+		const PetscScalar* xv;
+		PetscScalar*       yv;
+		PetscCall(VecGetArrayRead(x, &xv));
+		PetscCall(VecGetArray(y, &yv));
+		for (const RankOneTerm& t : *ctx->terms) {
+			double s = 0;
+			for (int k = 0; k < 12; ++k)
+				if (t.eq[k] >= 0) s += t.v[k] * xv[t.eq[k]];
+			for (int k = 0; k < 12; ++k)
+				if (t.eq[k] >= 0) yv[t.eq[k]] += t.u[k] * s;
+		}
+		PetscCall(VecRestoreArray(y, &yv));
+		PetscCall(VecRestoreArrayRead(x, &xv));
+		return 0;
+	}
+
+	class PetscSolver : public SparseSolver {
+	public:
+		explicit PetscSolver(bool gamg)
+		    : gamg_(gamg)
+		{
+			initialise();
+		}
+		~PetscSolver() override
+		{
+			if (ksp_) KSPDestroy(&ksp_);
+			if (shell_) MatDestroy(&shell_);
+			if (op_) MatDestroy(&op_);
+			if (pre_) MatDestroy(&pre_);
+			if (b_) VecDestroy(&b_);
+			if (x_) VecDestroy(&x_);
+		}
+		const char* name() const override { return gamg_ ? "petsc-gamg" : "petsc-mumps"; }
+		bool        iterative() const override { return gamg_; }
+
+		void setMatrix(int n, const int* colStart, const int* row, const double* value) override
+		{
+			const int nnz = colStart[n];
+			if (n != n_ || std::vector<int>(colStart, colStart + n + 1) != lowerStart_ || std::vector<int>(row, row + nnz) != lowerRow_)
+				makePattern(n, colStart, row);
+			full_.resize(source_.size());
+			for (size_t k = 0; k < source_.size(); ++k)
+				full_[k] = value[source_[k]];
+			copyValues(op_);
+		}
+
+		void setNearNullSpace(int count, const double* modes) override
+		{
+			// modified Gram-Schmidt, twice; a mode that a held DOF set takes out entirely is dropped
+			std::vector<std::vector<double>> q;
+			for (int m = 0; m < count; ++m) {
+				std::vector<double> v(modes + size_t(m) * n_, modes + size_t(m + 1) * n_);
+				const double        size = std::sqrt(std::inner_product(v.begin(), v.end(), v.begin(), 0.0));
+				for (int pass = 0; pass < 2; ++pass)
+					for (const auto& e : q) {
+						const double d = std::inner_product(v.begin(), v.end(), e.begin(), 0.0);
+						for (int i = 0; i < n_; ++i)
+							v[i] -= d * e[i];
+					}
+				const double left = std::sqrt(std::inner_product(v.begin(), v.end(), v.begin(), 0.0));
+				if (!(left > 1e-8 * size)) continue;
+				for (double& x : v)
+					x /= left;
+				q.push_back(std::move(v));
+			}
+			nullModes_ = q;
+			haveNull_  = true;
+		}
+
+		void setup() override
+		{
+			if (!pre_) throw std::runtime_error("PETSc solver set up before its matrix");
+			copyValues(pre_);
+			if (!ksp_) {
+				check(KSPCreate(PETSC_COMM_SELF, &ksp_), "KSPCreate");
+				check(KSPSetOptionsPrefix(ksp_, "swelldem_"), "KSPSetOptionsPrefix");
+				PC pc;
+				check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+				if (gamg_) {
+					check(KSPSetType(ksp_, KSPCG), "KSPSetType");
+					check(PCSetType(pc, PCGAMG), "PCSetType");
+				} else {
+					check(KSPSetType(ksp_, KSPPREONLY), "KSPSetType");
+					check(PCSetType(pc, PCCHOLESKY), "PCSetType");
+					check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+				}
+				check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+				check(KSPGetType(ksp_, &chosenType_), "KSPGetType");
+			}
+			if (gamg_ && haveNull_) {
+				std::vector<Vec> vecs(nullModes_.size());
+				for (size_t m = 0; m < nullModes_.size(); ++m) {
+					check(VecCreateSeq(PETSC_COMM_SELF, n_, &vecs[m]), "VecCreateSeq");
+					PetscScalar* a;
+					check(VecGetArray(vecs[m], &a), "VecGetArray");
+					std::copy(nullModes_[m].begin(), nullModes_[m].end(), a);
+					check(VecRestoreArray(vecs[m], &a), "VecRestoreArray");
+				}
+				MatNullSpace nsp;
+				check(MatNullSpaceCreate(PETSC_COMM_SELF, PETSC_FALSE, PetscInt(vecs.size()), vecs.data(), &nsp), "MatNullSpaceCreate");
+				check(MatSetNearNullSpace(pre_, nsp), "MatSetNearNullSpace");
+				check(MatNullSpaceDestroy(&nsp), "MatNullSpaceDestroy");
+				for (Vec& v : vecs)
+					VecDestroy(&v);
+				haveNull_ = false;
+			}
+			check(KSPSetReusePreconditioner(ksp_, PETSC_FALSE), "KSPSetReusePreconditioner");
+			check(KSPSetOperators(ksp_, gamg_ ? shell_ : pre_, pre_), "KSPSetOperators");
+			check(KSPSetUp(ksp_), "KSPSetUp");
+			check(KSPSetReusePreconditioner(ksp_, PETSC_TRUE), "KSPSetReusePreconditioner");
+		}
+
+		SolveReport solve(const double* b, double* x, double rtol, const std::vector<RankOneTerm>& terms, bool symmetric) override
+		{
+			if (!ksp_) throw std::runtime_error("PETSc solve before its setup");
+			SolveReport report;
+			context_.terms = &terms;
+			if (gamg_) {
+				// The terms' sliding contacts make A unsymmetric: GMRES, with the preconditioner on the
+				// right so that the residual it measures is A's own; CG (the unpreconditioned residual) otherwise.
+				const bool cg = symmetric || terms.empty();
+				if (chosenType_ && (std::strcmp(chosenType_, KSPCG) == 0 || std::strcmp(chosenType_, KSPGMRES) == 0)) {
+					check(KSPSetType(ksp_, cg ? KSPCG : KSPGMRES), "KSPSetType");
+					if (!cg) {
+						check(KSPGMRESSetRestart(ksp_, 100), "KSPGMRESSetRestart");
+						check(KSPSetPCSide(ksp_, PC_RIGHT), "KSPSetPCSide");
+					}
+					check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
+				}
+				check(KSPSetTolerances(ksp_, rtol, 0.0, PETSC_DEFAULT, 5000), "KSPSetTolerances");
+			}
+			PetscScalar* a;
+			check(VecGetArray(b_, &a), "VecGetArray");
+			std::copy(b, b + n_, a);
+			check(VecRestoreArray(b_, &a), "VecRestoreArray");
+			check(KSPSolve(ksp_, b_, x_), "KSPSolve");
+			const PetscScalar* xv;
+			check(VecGetArrayRead(x_, &xv), "VecGetArrayRead");
+			std::copy(xv, xv + n_, x);
+			check(VecRestoreArrayRead(x_, &xv), "VecRestoreArrayRead");
+			PetscInt           its = 0;
+			KSPConvergedReason why;
+			check(KSPGetIterationNumber(ksp_, &its), "KSPGetIterationNumber");
+			check(KSPGetConvergedReason(ksp_, &why), "KSPGetConvergedReason");
+			report.iterations = int(its);
+			report.converged  = why > 0;
+			if (gamg_) {
+				PetscReal rn = 0, bn = 0;
+				check(KSPGetResidualNorm(ksp_, &rn), "KSPGetResidualNorm");
+				check(VecNorm(b_, NORM_2, &bn), "VecNorm");
+				report.residual = bn > 0 ? rn / bn : 0;
+			}
+			if (!report.converged) report.reason = KSPConvergedReasons[why];
+			return report;
+		}
+
+	private:
+		void makePattern(int n, const int* colStart, const int* row)
+		{
+			// the full symmetric matrix in compressed rows, each entry's source in the lower triangle
+			n_ = n;
+			lowerStart_.assign(colStart, colStart + n + 1);
+			lowerRow_.assign(row, row + colStart[n]);
+			std::vector<int> count(n + 1, 0);
+			for (int j = 0; j < n; ++j)
+				for (int k = colStart[j]; k < colStart[j + 1]; ++k) {
+					++count[row[k] + 1];
+					if (row[k] != j) ++count[j + 1];
+				}
+			std::partial_sum(count.begin(), count.end(), count.begin());
+			rowStart_ = count;
+			col_.assign(count[n], 0);
+			source_.assign(count[n], 0);
+			std::vector<int> next(count.begin(), count.end() - 1);
+			for (int j = 0; j < n; ++j)
+				for (int k = colStart[j]; k < colStart[j + 1]; ++k) {
+					const int i = row[k];
+					col_[next[i]] = j, source_[next[i]++] = k;
+					if (i != j) col_[next[j]] = i, source_[next[j]++] = k;
+				}
+			for (int i = 0; i < n; ++i) { // columns in order within each row
+				std::vector<int> order(rowStart_[i + 1] - rowStart_[i]);
+				std::iota(order.begin(), order.end(), rowStart_[i]);
+				std::sort(order.begin(), order.end(), [&](int a, int b) { return col_[a] < col_[b]; });
+				std::vector<int> c(order.size()), s(order.size());
+				for (size_t t = 0; t < order.size(); ++t)
+					c[t] = col_[order[t]], s[t] = source_[order[t]];
+				std::copy(c.begin(), c.end(), col_.begin() + rowStart_[i]);
+				std::copy(s.begin(), s.end(), source_.begin() + rowStart_[i]);
+			}
+			if (ksp_) KSPDestroy(&ksp_), ksp_ = nullptr, chosenType_ = nullptr;
+			for (Mat* m : { &shell_, &op_, &pre_ })
+				if (*m) MatDestroy(m);
+			for (Vec* v : { &b_, &x_ })
+				if (*v) VecDestroy(v);
+			std::vector<double> zeros(col_.size(), 0.0);
+			for (Mat* m : { &op_, &pre_ }) {
+				check(MatCreate(PETSC_COMM_SELF, m), "MatCreate");
+				check(MatSetSizes(*m, n, n, n, n), "MatSetSizes");
+				check(MatSetType(*m, MATSEQAIJ), "MatSetType");
+				check(MatSeqAIJSetPreallocationCSR(*m, rowStart_.data(), col_.data(), zeros.data()), "MatSeqAIJSetPreallocationCSR");
+				check(MatSetOption(*m, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
+				check(MatSetOption(*m, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "MatSetOption");
+				check(MatSetOption(*m, MAT_SPD, PETSC_TRUE), "MatSetOption");
+			}
+			context_.K = op_;
+			check(MatCreateShell(PETSC_COMM_SELF, n, n, n, n, &context_, &shell_), "MatCreateShell");
+			check(MatShellSetOperation(shell_, MATOP_MULT, reinterpret_cast<void (*)(void)>(shellMult)), "MatShellSetOperation");
+			check(VecCreateSeq(PETSC_COMM_SELF, n, &b_), "VecCreateSeq");
+			check(VecDuplicate(b_, &x_), "VecDuplicate");
+		}
+
+		void copyValues(Mat m)
+		{
+			PetscScalar* a;
+			check(MatSeqAIJGetArray(m, &a), "MatSeqAIJGetArray");
+			std::copy(full_.begin(), full_.end(), a);
+			check(MatSeqAIJRestoreArray(m, &a), "MatSeqAIJRestoreArray");
+		}
+
+		bool                             gamg_;
+		int                              n_ = -1;
+		std::vector<int>                 lowerStart_, lowerRow_, rowStart_, col_, source_;
+		std::vector<double>              full_;
+		std::vector<std::vector<double>> nullModes_;
+		bool                             haveNull_ = false;
+		Mat                              op_ = nullptr, pre_ = nullptr, shell_ = nullptr;
+		Vec                              b_ = nullptr, x_ = nullptr;
+		KSP                              ksp_ = nullptr;
+		KSPType                          chosenType_ = nullptr;
+		ShellContext                     context_;
+	};
+} // namespace
+} // namespace swelldem::linalg
+
+extern "C" __attribute__((visibility("default"))) swelldem::linalg::SparseSolver* swelldem_petsc_open(const char* kind, char* error, int errorSize)
+{
+	try {
+		const std::string k(kind ? kind : "");
+		if (k != "gamg" && k != "mumps") throw std::runtime_error("unknown PETSc solver '" + k + "' (gamg or mumps)");
+		return new swelldem::linalg::PetscSolver(k == "gamg");
+	} catch (const std::exception& e) {
+		std::snprintf(error, size_t(errorSize), "%s", e.what());
+		return nullptr;
+	}
+}

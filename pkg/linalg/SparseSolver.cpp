@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "SparseSolver.hpp"
+#include <cstdlib>
+#include <dlfcn.h>
+#include <stdexcept>
+
+namespace swelldem::linalg {
+
+namespace {
+	using OpenFn = SparseSolver* (*)(const char* kind, char* error, int errorSize);
+
+	// The module, opened once. RTLD_GLOBAL: Open MPI's components, which PETSc's MPI_Init loads,
+	// look up libmpi's symbols in the global scope.
+	OpenFn moduleEntry(std::string& why)
+	{
+		static void*       handle = nullptr;
+		static std::string failure;
+		static bool        tried = false;
+		if (!tried) {
+			tried             = true;
+			const char* env   = std::getenv("SWELLDEM_PETSC_MODULE");
+			const char* where = env && *env ? env : SWELLDEM_PETSC_MODULE_PATH;
+			handle            = dlopen(where, RTLD_NOW | RTLD_GLOBAL);
+			if (!handle) {
+				const char* e = dlerror();
+				failure       = std::string("PETSc is not available: the module ") + where + " could not be loaded (" + (e ? e : "?")
+				        + "); PETSc comes from Debian's petsc-dev, installed by scripts/bootstrap.sh, and the module is built with it";
+			}
+		}
+		why = failure;
+		if (!handle) return nullptr;
+		auto fn = reinterpret_cast<OpenFn>(dlsym(handle, "swelldem_petsc_open"));
+		if (!fn) why = std::string("PETSc module without swelldem_petsc_open: ") + SWELLDEM_PETSC_MODULE_PATH;
+		return fn;
+	}
+}
+
+std::string petscUnavailable()
+{
+	std::string why;
+	moduleEntry(why);
+	return why;
+}
+
+std::unique_ptr<SparseSolver> openPetsc(const std::string& kind)
+{
+	std::string why;
+	OpenFn      fn = moduleEntry(why);
+	if (!fn) throw std::runtime_error(why);
+	char          error[512] = { 0 };
+	SparseSolver* s          = fn(kind.c_str(), error, int(sizeof error));
+	if (!s) throw std::runtime_error(error);
+	return std::unique_ptr<SparseSolver>(s);
+}
+
+} // namespace swelldem::linalg
