@@ -4,7 +4,7 @@ cannot reproduce): expansion along and across the load and the volumetric expans
 stress, beside the trend Multon and Toutlemonde measured on loaded cylinders.
 
     /usr/bin/python3 scripts/loaded_expansion.py --out out/loaded [--stresses-mpa 0 1 2.5]
-        [--size-mm 12 12 24] [--steps-per-decade 4] [--t-start 28] [--seed 1] [--solver adr|implicit] (default adr)
+        [--size-mm 12 12 24] [--steps-per-decade 4] [--t-start 28] [--seed 1] [--strength-scale 1] [--solver adr|implicit] (default adr)
 
 Each stress S runs scripts/swelling_test.py --dim 3 --scenario asr-fine --behaviour viscoelastic
 (damage on unless --no-damage) --boundary-z stress:-S twice: reactive (the run's eps_inf) and non-reactive (eps_inf
@@ -13,10 +13,11 @@ where a loaded companion of non-reactive concrete gives the creep to subtract, t
 is the reactive strain minus the non-reactive one, per direction: along the load (z), across it
 (the mean of x and y) and the volume change. Every run starts at --t-start (28 days by default):
 the load, like the laboratory's, acts on cured concrete, and the swelling counted is the part
-after it. The runs go through the study runner (swelldem.study: --jobs local Dask workers, or a
-running scheduler's with --scheduler), each into DIR/<run>/ with its log DIR/<run>.log; a run that
-finished with the same settings is kept, a finished run of other settings stops the script before
-any work. Writes DIR/loaded_expansion.png, .csv and .md.
+after it. --strength-scale S multiplies the tensile strength of every contact kind in every run
+(the prism's compressive strength is S times the paper's 6.2 MPa). The runs go through the study
+runner (swelldem.study: --jobs local Dask workers, or a running scheduler's with --scheduler),
+each into DIR/<run>/ with its log DIR/<run>.log; a run that finished with the same settings is
+kept, a finished run of other settings stops the script before any work. Writes DIR/loaded_expansion.png, .csv and .md.
 """
 import argparse
 import csv
@@ -27,11 +28,11 @@ import numpy as np
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, "py"))
-from swelldem import options, report, scenario, study  # noqa: E402
+from swelldem import options, paper, report, scenario, study  # noqa: E402
 
 ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-# 0, 1 and 2.5 MPa: the prism's compressive strength at the paper's contact values is about 5 to
-# 7.5 MPa (docs/scenarios.md), below the laboratory's 10 and 20 MPa
+# 0, 1 and 2.5 MPa: the prism's compressive strength at the paper's contact strengths is 6.2 MPa
+# (scripts/prism_strength.py), below the laboratory's 10 and 20 MPa
 ap.add_argument("--stresses-mpa", type=float, nargs="+", default=[0.0, 1.0, 2.5],
                 help="uniaxial compressive stresses on the z faces, >= 0 (compression) [MPa]")
 ap.add_argument("--size-mm", type=float, nargs=3, default=(12.0, 12.0, 24.0), metavar=("W", "H", "D"),
@@ -42,6 +43,11 @@ ap.add_argument("--aggregate-area-fraction", type=float, default=0.2,
 ap.add_argument("--t-start", type=float, default=28.0,
                 help="age at which the load is applied and the run starts, > 0 (Multon and Toutlemonde loaded at 28 days) [day]")
 ap.add_argument("--seed", type=int, default=1, help="mesostructure seed (the same specimen in every run)")
+# 1: the paper's Table 3.5 contact strengths. The prism's compressive strength is proportional to
+# the scale (6.2 MPa at 1, 18.7 MPa at 3, scripts/prism_strength.py); 0 5 10 MPa runs at
+# --strength-scale 3 (docs/scenarios.md, "A prism under a uniaxial load")
+ap.add_argument("--strength-scale", type=float, default=1.0,
+                help="factor on the paper's Table 3.5 tensile strengths of every contact kind, in every run, > 0 [-]")
 ap.add_argument("--no-damage", action="store_true",
                 help="contacts never break: the model is then linear, and the ASR expansion under any load is the free one "
                      "(superposition): the load's effect is the cracking's")
@@ -62,7 +68,7 @@ def run_name(stress, reactive):
 
 def common(stress, reactive):
     return dict(dim=3, scenario="asr-fine", behaviour="viscoelastic", damage=not args.no_damage, size_mm=tuple(args.size_mm), seed=args.seed,
-                solver=args.solver, steps_per_decade=args.steps_per_decade, t_start_days=args.t_start, aggregate_area_fraction=args.aggregate_area_fraction,
+                solver=args.solver, steps_per_decade=args.steps_per_decade, strength_scale=args.strength_scale, t_start_days=args.t_start, aggregate_area_fraction=args.aggregate_area_fraction,
                 boundary_z=f"stress:{-stress * 1e6:g}" if stress > 0 else "free",
                 **({} if reactive else {"eps_inf": 0.0}))
 
@@ -73,6 +79,7 @@ with options.refuse_bad("loaded_expansion.py"):
     for s in args.stresses_mpa:
         options.number("stresses_mpa", s, lo=0, lo_incl=True, unit="MPa")
     options.number("t_start", args.t_start, lo=0, unit="day")
+    options.number("strength_scale", args.strength_scale, lo=0, unit="-")
     if len(set(args.stresses_mpa)) != len(args.stresses_mpa):
         options.bad("stresses_mpa", tuple(args.stresses_mpa), "distinct stresses")
     runs = {}
@@ -127,7 +134,8 @@ with open(base + ".csv", "w", newline="") as f:
 with open(base + ".md", "w") as f:
     f.write(f"ASR-fine, viscoelastic, damage {'off' if args.no_damage else 'on'}, 3D prism {' x '.join(f'{v:g}' for v in args.size_mm)} mm (load along the "
             f"last side, z), seed {args.seed}, {r0['n_particles']} spheres, aggregate fraction {args.aggregate_area_fraction:g}, "
-            f"{args.steps_per_decade:g} steps a decade, solver {args.solver}, loaded and started at day {args.t_start:g}. ASR expansion = reactive strain minus the strain of "
+            f"{args.steps_per_decade:g} steps a decade, solver {args.solver}, tensile strengths {args.strength_scale:g} x the paper's "
+            f"(--strength-scale), loaded and started at day {args.t_start:g}. ASR expansion = reactive strain minus the strain of "
             f"the same specimen without swelling under the same load (eps_inf 0: its elastic and creep strains), at "
             f"{free[0][-1]:g} days; across = mean of the x and y strains; volume = the volume change.\n\n")
     f.write("| stress [MPa] | ASR along the load [1e-6] | ASR across [1e-6] | ASR volume [1e-6] | along / free | across / free "
@@ -135,7 +143,8 @@ with open(base + ".md", "w") as f:
     for s in args.stresses_mpa:
         t, z, xy, v = asr[s]
         res = results[s, True]
-        broken = 100 * sum(res["per_kind"][k]["broken"][-1] for k in res["per_kind"]) / max(1, sum(res["n_contacts_by_kind"].values()))
+        # the concrete's contacts (MORTAR, ITZ, AGG), not the platens' (which never break)
+        broken = 100 * sum(res["per_kind"][k]["broken"][-1] for k in paper.KIND_NAMES) / max(1, sum(res["n_contacts_by_kind"][k] for k in paper.KIND_NAMES))
         f.write(f"| {s:g} | {z[-1] * 1e6:.0f} | {xy[-1] * 1e6:.0f} | {v[-1] * 1e6:.0f} | {z[-1] / free[1][-1]:.2f} | "
                 f"{xy[-1] / free[2][-1]:.2f} | {v[-1] / free[3][-1]:.2f} | {broken:.1f} | {res['wall_s']:.0f} |\n")
 
@@ -169,7 +178,7 @@ axs.set_title("Multon & Toutlemonde (2006): along the load reduced, moved across
 axs.grid(alpha=0.3)
 axs.legend(fontsize=8)
 fig.suptitle(f"ASR-fine, viscoelastic, damage {'off' if args.no_damage else 'on'}, 3D prism {' x '.join(f'{v:g}' for v in args.size_mm)} mm, seed {args.seed}, "
-             f"{args.solver}, loaded from day {args.t_start:g}", fontsize=10)
+             f"{args.solver}, strengths x {args.strength_scale:g}, loaded from day {args.t_start:g}", fontsize=10)
 fig.tight_layout()
 fig.savefig(base + ".png", dpi=120)
 print(f"loaded_expansion.py: {base}.png, .csv, .md")

@@ -56,3 +56,13 @@ def test_a_folder_of_other_settings_is_refused(study):
                            "--aggregate-area-fraction", "0", "--steps-per-decade", "1"],
                           capture_output=True, text=True, timeout=300, env=dict(os.environ, SWELLDEM_BUILD_DIR=build_dir()))
     assert proc.returncode == 2 and "a new folder or one of a study with the same settings" in proc.stderr and "damage False (asked True)" in proc.stderr, proc.stderr
+
+
+@pytest.mark.parametrize("scale", ["0", "-1", "nan"])
+def test_a_bad_strength_scale_is_refused_before_any_work(tmp_path, scale):
+    out = tmp_path / "loaded"
+    proc = subprocess.run(["/usr/bin/python3", SCRIPT, "--out", str(out), "--strength-scale", scale],
+                          capture_output=True, text=True, timeout=120, env=dict(os.environ, SWELLDEM_BUILD_DIR=build_dir()))
+    assert proc.returncode == 2, proc.stdout[-2000:] + proc.stderr[-2000:]
+    assert f"strength_scale = {float(scale)!r} is out of range; allowed: 0 < strength_scale < inf" in proc.stderr, proc.stderr
+    assert not out.exists() or not any(out.iterdir())  # no run started
