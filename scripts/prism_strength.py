@@ -157,8 +157,10 @@ out = {"settings": vars(args), "n_particles": int(len(built.assembly.x)), "n_con
     "face_m2": face, "platen_distance_m": depth0, "strain": e.tolist(), "stress_Pa": s.tolist(), "broken": loader.broken,
     "iterations_per_step": loader.iterations, "status": loader.status, "peak_Pa": float(s[k]), "strain_at_peak": float(e[k]),
     "peak_lower_bound": residual.peak_is_lower_bound(s) or loader.status == "no_equilibrium" and k == len(s) - 1,
-    "modulus_Pa": residual.modulus_fit(e, s, float(s[k])) if k >= 2 else None,
+    "modulus_Pa": None,  # below: the fit needs two steps within its window
     "iterations": int(solver.totalIterations), "wall_s": time.time() - t0}
+modulus = residual.modulus_fit(e, s, float(s[k])) if k >= 2 else float("nan")
+out["modulus_Pa"] = float(modulus) if np.isfinite(modulus) else None
 os.makedirs(args.out, exist_ok=True)
 with open(os.path.join(args.out, "strength.json"), "w") as f:
     json.dump(out, f, indent=1)
