@@ -28,6 +28,10 @@ public:
 	virtual ~SparseSolver() = default;
 	virtual const char* name() const = 0;
 	virtual bool        iterative() const = 0;
+	// The n equations' place in blocks of blockSize (a body's DOFs): equation e is row fullOf[e] of a
+	// matrix of nFull rows, whose other rows (held DOFs) stay out of the solve. Algebraic multigrid
+	// then aggregates bodies, not single DOFs. Without a call, every equation is its own block.
+	virtual void setBlocks(int n, int blockSize, int nFull, const int* fullOf) = 0;
 	// The current matrix K (n x n, symmetric): its lower triangle in compressed columns, with Eigen's
 	// (and CHOLMOD's) layout. A call with the pattern of the last one only copies the values.
 	virtual void setMatrix(int n, const int* colStart, const int* row, const double* value) = 0;

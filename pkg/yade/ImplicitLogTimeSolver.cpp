@@ -220,10 +220,9 @@ void ImplicitLogTimeSolver::postLoad()
 	core::require(stallTolerance >= 0 && stallTolerance < 1, "ImplicitLogTimeSolver.stallTolerance", stallTolerance, "0 <= stallTolerance < 1");
 	core::require(fallbackIterations >= 0, "ImplicitLogTimeSolver.fallbackIterations", fallbackIterations, ">= 0 (0: never)");
 	core::requireOpenInterval("ImplicitLogTimeSolver.fallbackTolerance", fallbackTolerance, 0, 1);
-	core::require(gamgAbove >= 0, "ImplicitLogTimeSolver.gamgAbove", gamgAbove, ">= 0");
-	if (linearSolver != "auto" && linearSolver != "cholmod" && linearSolver != "petsc-gamg" && linearSolver != "petsc-mumps")
+	if (linearSolver != "cholmod" && linearSolver != "petsc-gamg" && linearSolver != "petsc-mumps")
 		throw std::invalid_argument("ImplicitLogTimeSolver.linearSolver = '" + linearSolver
-		                            + "' is not a linear solver; allowed: auto, cholmod, petsc-gamg, petsc-mumps");
+		                            + "' is not a linear solver; allowed: cholmod, petsc-gamg, petsc-mumps");
 	if (linearSolver.rfind("petsc-", 0) == 0) {
 		const std::string why = swelldem::linalg::petscUnavailable();
 		if (!why.empty()) throw std::invalid_argument("ImplicitLogTimeSolver.linearSolver = '" + linearSolver + "': " + why);
@@ -324,7 +323,7 @@ void ImplicitLogTimeSolver::numberEquations()
 	numberDofs(masks);
 	makePattern();
 	findSlots();
-	if (chosenLinearSolver() == "cholmod") {
+	if (linearSolver == "cholmod") {
 		sys->petsc.reset();
 		sys->chol.setMode(Eigen::CholmodSupernodalLLt);
 		sys->chol.analyzePattern(sys->K);
@@ -679,7 +678,7 @@ void ImplicitLogTimeSolver::factor()
 	factorSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 	++factorizations;
 	if (!ok)
-		fail("the tangent stiffness (" + std::to_string(S.nEq) + " equations) is not positive definite; " + linearSolverUsed
+		fail("the tangent stiffness (" + std::to_string(S.nEq) + " equations) is not positive definite; " + linearSolver
 		     + " could not factor it");
 	factoredValues.assign(S.K.valuePtr(), S.K.valuePtr() + S.K.nonZeros());
 	factoredStiffness = S.stiffness;
@@ -1284,22 +1283,25 @@ void ImplicitLogTimeSolver::action()
 
 namespace yade {
 
-const std::string& ImplicitLogTimeSolver::chosenLinearSolver() const
-{
-	static const std::string cholmod = "cholmod", gamg = "petsc-gamg";
-	if (linearSolver != "auto") return linearSolver;
-	return nDim == 3 && sys && sys->nEq > gamgAbove ? gamg : cholmod;
-}
-
 void ImplicitLogTimeSolver::openLinearSolver()
 {
 	// The solver for the pattern just made, and the rigid-body modes GAMG's coarse levels must keep:
 	// every body translating (2D: x, y; 3D: x, y, z) and turning about the specimen's centre (2D: z;
 	// 3D: x, y, z), over the free equations; a turn moves a body by w x (p - c) and turns it by w.
 	ImplicitLinearSystem& S    = *sys;
-	const std::string     kind = chosenLinearSolver() == "petsc-gamg" ? "gamg" : "mumps";
+	const std::string     kind = linearSolver == "petsc-gamg" ? "gamg" : "mumps";
 	try {
 		if (!S.petsc || S.petscKind != kind) S.petsc = swelldem::linalg::openPetsc(kind), S.petscKind = kind;
+		// a body's DOFs are a block (multigrid aggregates bodies); bodies with none free are left out
+		std::vector<int> fullOf(size_t(S.nEq), -1);
+		int              blocks = 0;
+		for (size_t id = 0; id * S.nb < S.dofOf.size(); ++id) {
+			bool any = false;
+			for (int d = 0; d < S.nb; ++d)
+				if (S.dofOf[S.nb * id + d] >= 0) fullOf[size_t(S.dofOf[S.nb * id + d])] = S.nb * blocks + d, any = true;
+			blocks += any;
+		}
+		S.petsc->setBlocks(S.nEq, S.nb, S.nb * blocks, fullOf.data());
 		S.petsc->setMatrix(S.nEq, S.K.outerIndexPtr(), S.K.innerIndexPtr(), S.K.valuePtr());
 		if (!S.petsc->iterative()) return;
 		const auto& bodies = scene->bodies->body;
@@ -1334,14 +1336,13 @@ void ImplicitLogTimeSolver::openLinearSolver()
 		}
 		S.petsc->setNearNullSpace(nModes, modes.data());
 	} catch (const std::exception& e) {
-		fail(std::string("linear solver ") + chosenLinearSolver() + ": " + e.what());
+		fail(std::string("linear solver ") + linearSolver + ": " + e.what());
 	}
 }
 
 bool ImplicitLogTimeSolver::factorValues()
 {
 	ImplicitLinearSystem& S = *sys;
-	linearSolverUsed        = chosenLinearSolver();
 	if (!S.petsc) {
 		const SerialOpenMP serial;
 		S.chol.factorize(S.K);
@@ -1351,7 +1352,7 @@ bool ImplicitLogTimeSolver::factorValues()
 		S.petsc->setMatrix(S.nEq, S.K.outerIndexPtr(), S.K.innerIndexPtr(), S.K.valuePtr());
 		S.petsc->setup();
 	} catch (const std::exception& e) {
-		fail(std::string("linear solver ") + linearSolverUsed + ": " + e.what());
+		fail(std::string("linear solver ") + linearSolver + ": " + e.what());
 	}
 	return true;
 }
@@ -1369,7 +1370,7 @@ Eigen::MatrixXd ImplicitLogTimeSolver::directSolve(const Eigen::MatrixXd& b)
 			x.col(j) = out;
 		}
 	} catch (const std::exception& e) {
-		fail(std::string("linear solver ") + linearSolverUsed + ": " + e.what());
+		fail(std::string("linear solver ") + linearSolver + ": " + e.what());
 	}
 	return x;
 }
@@ -1417,7 +1418,7 @@ Eigen::VectorXd ImplicitLogTimeSolver::krylovSolve(const Eigen::VectorXd& r, con
 			}
 		}
 	} catch (const std::exception& e) {
-		fail(std::string("linear solver ") + linearSolverUsed + ": " + e.what());
+		fail(std::string("linear solver ") + linearSolver + ": " + e.what());
 	}
 	return du;
 }

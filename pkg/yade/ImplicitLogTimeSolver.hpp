@@ -53,15 +53,11 @@ namespace yade {
 class ImplicitLogTimeSolver : public LogTimeSolver {
 public:
 #define SWELLDEM_IMPLICIT_ATTRS(X)                                                                                                                             \
-	X(string, linearSolver, "auto", swelldem_attr::Setting,                                                                                              \
+	X(string, linearSolver, "cholmod", swelldem_attr::Setting,                                                                                           \
 	  "Solver of each Newton move's sparse system: cholmod (CHOLMOD's supernodal Cholesky factor), petsc-gamg (PETSc's conjugate "            \
-	  "gradients preconditioned by its algebraic multigrid GAMG, given the particles' rigid-body modes; GMRES while sliding contacts' "        \
-	  "coupling makes the tangent unsymmetric; each solve only as exact as the Newton iteration needs), petsc-mumps (MUMPS's Cholesky "      \
-	  "factor through PETSc); auto: cholmod for sections and for spheres up to gamgAbove equations, petsc-gamg above (docs/performance.md) [-]") \
-	X(long, gamgAbove, 400000, swelldem_attr::Setting,                                                                                                 \
-	  "Equations of a 3D scene above which linearSolver auto takes petsc-gamg: where a CHOLMOD factor stops being practical on a "            \
-	  "2-core, 24 GB machine (docs/performance.md) [-]")                                                                                           \
-	X(string, linearSolverUsed, "", swelldem_attr::Result, "The linear solver of the last Newton move (what linearSolver auto chose) [-]")             \
+	  "gradients preconditioned by its algebraic multigrid GAMG, which is given the bodies' rigid-body modes and aggregates bodies; GMRES "    \
+	  "while sliding contacts' coupling makes the tangent unsymmetric; each solve only as exact as the Newton iteration needs), petsc-mumps " \
+	  "(MUMPS's Cholesky factor through PETSc). PETSc's own options reach its solvers with the prefix swelldem_ (PETSC_OPTIONS) [-]")         \
 	X(long, krylovSolves, 0, swelldem_attr::Result, "Linear solves by a Krylov method (petsc-gamg) so far [-]")                                   \
 	X(long, krylovIterations, 0, swelldem_attr::Result, "Krylov iterations of those solves so far [-]")                                            \
 	X(long, krylovFailures, 0, swelldem_attr::Result,                                                                                                  \
@@ -207,7 +203,6 @@ private:
 	bool                                  needsFactor(bool freshFactor) const; // K no longer within refactorTolerance and lowRankChanges of the factor
 	void                                  factor();
 	bool                                  factorValues(); // CHOLMOD's factor or PETSc's set-up of K's values; false: not positive definite
-	const std::string&                    chosenLinearSolver() const; // linearSolver, auto resolved for this scene
 	void                                  openLinearSolver();  // the PETSc solver of the chosen kind, and its rigid-body modes
 	Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic> directSolve(const Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>& b); // with the factor in hand
 	Eigen::Matrix<Real, Eigen::Dynamic, 1> krylovSolve(const Eigen::Matrix<Real, Eigen::Dynamic, 1>& r, const std::vector<const LowRankColumn*>& use);

@@ -48,6 +48,8 @@ def main(argv):
     ap.add_argument("--out", default="", help="also write the result as JSON into this folder (result.json)")
     ap.add_argument("--solver-param", action="append", default=[], metavar="NAME=VALUE",
                     help="a setting of the solver, e.g. lowRankChanges=0 (a Python literal; repeatable), as swelling_test.py's")
+    ap.add_argument("--steps", type=int, default=0,
+                    help="stop after this many physical steps (the first is a whole intact step's solves); 0: the whole run")
     a = ap.parse_args(argv)
     with options.refuse_bad("bench_implicit_damage.py"):
         params = dict(scenario.parse_solver_param(text) for text in a.solver_param)
@@ -58,6 +60,7 @@ def main(argv):
                                      tolerance=a.tolerance, solver=a.solver, solver_params=params,
                                      # the test's own folder is not written (only --out's result.json)
                                      out=a.out or tempfile.gettempdir())
+        t_build = time.time()
         prepared = scenario.prepare(test)
     built = scenario.build(test, prepared)
     solver, ys, assembly = built.solver, built.scene, built.assembly
@@ -65,7 +68,13 @@ def main(argv):
     kind0, _, _, _ = recorder.contact_arrays(bonded)
     t0, status = time.time(), "finished"
     try:
-        dem.run_to_end(solver)
+        if a.steps > 0:
+            # iteration by iteration: a 3D step's iteration takes seconds, the call's own cost 10 ms
+            while not solver.finished and solver.step <= a.steps:
+                dem.run_chunk_quietly(solver, 1)
+            status = f"stopped after step {a.steps}" if not solver.finished else status
+        else:
+            dem.run_to_end(solver)
     except Exception as e:  # noqa: BLE001 - the run's end is the measurement
         status = f"failed: {e}"
     wall = time.time() - t0
@@ -79,7 +88,9 @@ def main(argv):
         "scenario": a.scenario, "behaviour": a.behaviour, "size_mm": list(a.size_mm), "seed": a.seed, "solver": a.solver,
         "break_rule": a.break_rule, "status": status, "iterations": solver.totalIterations, "wall_s": round(wall, 2),
         "factorizations": getattr(solver, "factorizations", None), "factor_wall_s": getattr(solver, "factorSeconds", None),
-        "factor_nonzeros": getattr(solver, "factorNonZeros", None), "settings": dict(item.split("=", 1) for item in a.solver_param),
+        "factor_nonzeros": getattr(solver, "factorNonZeros", None), "build_s": round(t0 - t_build, 2),
+        "linear_solver": getattr(solver, "linearSolver", None), "krylov_solves": getattr(solver, "krylovSolves", None),
+        "krylov_iterations": getattr(solver, "krylovIterations", None), "krylov_failures": getattr(solver, "krylovFailures", None), "settings": dict(item.split("=", 1) for item in a.solver_param),
         "strain_x": float(strain["eps_xx"]), "strain_y": float(strain["eps_yy"]), "broken_pct": pct,
         "n_particles": int(len(assembly.x)), "n_contacts": int(len(ys.contacts)),
         "peak_mb": round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, 1)}
