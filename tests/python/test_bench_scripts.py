@@ -39,6 +39,8 @@ def run(cmd, cwd, timeout=300):
     ("bench_laguerre3d.py", ("--sizes", "300", "--repeat", "1", "--json", "{tmp}/l3.json"), "| 256 | 5.43 |"),
     ("bench_packing3d.py", ("--sizes-mm", "4", "--json", "{tmp}/p3.json"), "| 4 | "),
     ("bench_meso3d.py", ("--sizes-mm", "4", "--json", "{tmp}/m3.json"), "| 4 | "),
+    ("bench_linear_solvers.py", ("--sizes-mm", "12", "--linear-solvers", "cholmod", "petsc-gamg", "--json", "{tmp}/ls.json"),
+     "12 mm: petsc-gamg / cholmod run time"),
 ])
 def test_bench_driver_reaches_its_table(tmp_path, name, args, first_line):
     out = run([PY, os.path.join(BENCH, name)] + [a.format(tmp=tmp_path) for a in args], tmp_path)
