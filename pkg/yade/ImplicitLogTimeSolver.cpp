@@ -178,6 +178,24 @@ namespace {
 	}
 }
 
+namespace {
+	// Adds the 3D sliding contacts' stiffness across their slip (S.across) to K's values v.
+	void addAcross(const ImplicitLinearSystem& S, double* v)
+	{
+		const PairTable& P = *S.pairs;
+		for (const auto& a : S.across) {
+			const size_t c = size_t(a[0]);
+			Real         bn[12], bs[12], bs2[12], row[12];
+			contactRows(S.contacts[c], S.nb, bn, bs, bs2);
+			for (int k = 0; k < 12; ++k)
+				row[k] = -a[2] * bs[k] + a[1] * bs2[k];
+			const int* slot = &S.slots[P.size * c];
+			for (int k = 0; k < P.size; ++k)
+				if (slot[k] >= 0) v[slot[k]] += a[3] * row[P.a[k]] * row[P.b[k]];
+		}
+	}
+}
+
 ImplicitLogTimeSolver::ImplicitLogTimeSolver()
 {
 	tolerance      = 1e-10;
@@ -655,18 +673,7 @@ void ImplicitLogTimeSolver::factor()
 	// in the tangent at all, where Newton stalled after the first breaks (3,103 iterations against 1,137).
 	if (!S.across.empty()) {
 		factoredDrift.assign(S.K.valuePtr(), S.K.valuePtr() + S.K.nonZeros());
-		const PairTable& P = *S.pairs;
-		double*          v = S.K.valuePtr();
-		for (const auto& a : S.across) {
-			const size_t c = size_t(a[0]);
-			Real         bn[12], bs[12], bs2[12], row[12];
-			contactRows(S.contacts[c], S.nb, bn, bs, bs2);
-			for (int k = 0; k < 12; ++k)
-				row[k] = -a[2] * bs[k] + a[1] * bs2[k];
-			const int* slot = &S.slots[P.size * c];
-			for (int k = 0; k < P.size; ++k)
-				if (slot[k] >= 0) v[slot[k]] += a[3] * row[P.a[k]] * row[P.b[k]];
-		}
+		addAcross(S, S.K.valuePtr());
 		factoredAcross.assign(S.contacts.size(), 0.0);
 		for (const auto& a : S.across)
 			factoredAcross[size_t(a[0])] = a[3];
@@ -1383,19 +1390,7 @@ Eigen::VectorXd ImplicitLogTimeSolver::krylovSolve(const Eigen::VectorXd& r, con
 	// would refactor. No column needs a solve of its own, as Woodbury's formula does with a factor.
 	ImplicitLinearSystem& S = *sys;
 	std::vector<double>   values(S.K.valuePtr(), S.K.valuePtr() + S.K.nonZeros());
-	if (!S.acrossInK && !S.across.empty()) {
-		const PairTable& P = *S.pairs;
-		for (const auto& a : S.across) {
-			const size_t c = size_t(a[0]);
-			Real         bn[12], bs[12], bs2[12], row[12];
-			contactRows(S.contacts[c], S.nb, bn, bs, bs2);
-			for (int k = 0; k < 12; ++k)
-				row[k] = -a[2] * bs[k] + a[1] * bs2[k];
-			const int* slot = &S.slots[P.size * c];
-			for (int k = 0; k < P.size; ++k)
-				if (slot[k] >= 0) values[size_t(slot[k])] += a[3] * row[P.a[k]] * row[P.b[k]];
-		}
-	}
+	if (!S.acrossInK) addAcross(S, values.data());
 	std::vector<swelldem::linalg::RankOneTerm> terms(use.size());
 	bool                                       symmetric = true;
 	for (size_t i = 0; i < use.size(); ++i) {
