@@ -206,7 +206,7 @@ ImplicitLogTimeSolver::ImplicitLogTimeSolver()
 	shearFromStepStart = true;
 	progressDetail     = [this] {
 		return " (" + std::to_string(relaxationIterations - relaxationAtStepStart) + " relaxation, "
-		       + std::to_string(factorizations - factorizationsAtStepStart) + " factorizations"
+		       + std::to_string(factorizations - factorizationsAtStepStart) + (linearSolver == "petsc-gamg" ? " preconditioner set-ups, " + std::to_string(krylovIterations - krylovAtStepStart) + " Krylov iterations" : " factorizations")
 		       + (activeChanges > 0 ? ", " + std::to_string(activeChanges) + " contacts changing state in the last iteration" : std::string())
 		       + (fallback ? ", finished by dynamic relaxation: fallback" : std::string()) + ")";
 	};
@@ -1176,7 +1176,7 @@ void ImplicitLogTimeSolver::syncShearMode()
 void ImplicitLogTimeSolver::action()
 {
 	if (!startIteration()) return;
-	if (iterInStep == 1) relaxationAtStepStart = relaxationIterations, factorizationsAtStepStart = factorizations;
+	if (iterInStep == 1) relaxationAtStepStart = relaxationIterations, factorizationsAtStepStart = factorizations, krylovAtStepStart = krylovIterations;
 	const Balance b = measureBalance();
 	const TrackHeldBodiesAtExit track { this };
 	// A round whose Newton iterations have not reached `tolerance` after newtonLimit (a broken contact

@@ -176,7 +176,7 @@ public:
 	template <class C> static void pyMethods(C&) { }
 
 private:
-	long relaxationAtStepStart = 0, factorizationsAtStepStart = 0; // for the progress line only
+	long relaxationAtStepStart = 0, factorizationsAtStepStart = 0, krylovAtStepStart = 0; // for the progress line only
 	int  dofsPerBody() const { return nDim == 3 ? 6 : 3; }       // 2D x, y, rz; 3D x, y, z, rx, ry, rz
 	const unsigned* dofBits() const;                             // the blocked-DOF bit of each of them
 	string fallbackDetail() const;                                 // the fallback's tolerance and hand-over, for the progress lines
