@@ -147,7 +147,7 @@ def read_vtp(path):
 
 
 def documented_names(*sections):
-    """Regular expressions of the file names the guide's given sections (their '## N. ' numbers)
+    r"""Regular expressions of the file names the guide's given sections (their '## N. ' numbers)
     name in backticks: `crack_map_<day>d.png` -> crack_map_.+d\.png; a folder `vtk/` as vtk."""
     text = guide_text()
     names = set()
