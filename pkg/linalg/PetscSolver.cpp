@@ -165,13 +165,16 @@ namespace {
 					// iterations in 31 s against 355 in 61 s
 					check(PetscOptionsHasName(nullptr, "swelldem_", "-mg_levels_ksp_max_it", &set), "PetscOptionsHasName");
 					if (!set) check(PetscOptionsSetValue(nullptr, "-swelldem_mg_levels_ksp_max_it", "4"), "PetscOptionsSetValue");
-					check(PCSetUseAmat(pc, PETSC_FALSE), "PCSetUseAmat");
 				} else {
 					check(KSPSetType(ksp_, KSPPREONLY), "KSPSetType");
 					check(PCSetType(pc, PCCHOLESKY), "PCSetType");
 					check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
 				}
 				check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+				// after the user's options: the shell operator (its rank-one terms) has no entries a
+				// smoother could read, so the preconditioner works on the assembled matrix whatever
+				// PETSC_OPTIONS say (PETSc's own SOR on the shell ends the process)
+				if (gamg_) check(PCSetUseAmat(pc, PETSC_FALSE), "PCSetUseAmat");
 				check(KSPGetType(ksp_, &chosenType_), "KSPGetType");
 			}
 			if (gamg_ && haveNull_) {
