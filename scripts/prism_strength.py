@@ -83,7 +83,6 @@ with options.refuse_bad(PROG):
 t0 = time.time()
 built = scenario.build(test, prepared)
 from swelldem.plugin import require  # noqa: E402
-from swelldem.dem.scene import run_chunk_quietly  # noqa: E402
 
 yade, _ = require(PROG)
 O = yade.Omega()
@@ -136,17 +135,7 @@ class Loader:
 
 loader = Loader()
 solver.stepHook = loader
-try:
-    while not loader.done and not solver.finished:
-        run_chunk_quietly(solver, 2000)
-        if not loader.done and int(solver.totalIterations) - loader.it0 > args.step_iterations:
-            loader.done, loader.status = True, "no_equilibrium"  # the step's rounds of breaks go on: the prism has failed
-except RuntimeError as e:
-    if "no equilibrium" not in str(e):
-        raise
-    loader.done, loader.status = True, "no_equilibrium"
-if not loader.done:
-    loader.status = "schedule_end"
+residual.drive_test(solver, loader, step_iterations=args.step_iterations)
 
 s = np.array(loader.stress)
 e = np.array(loader.strain)

@@ -48,7 +48,6 @@ struct ImplicitLinearSystem {
 	SpMat                                              K;
 	Eigen::CholmodDecomposition<SpMat, Eigen::Lower>   chol;
 	std::unique_ptr<swelldem::linalg::SparseSolver>    petsc; // instead of chol: linearSolver petsc-gamg or petsc-mumps
-	std::string                                        petscKind; // the kind petsc was opened for
 	bool                                               acrossInK = false; // K's values hold the 3D sliding contacts' across stiffness (factor())
 	std::vector<Eigen::VectorXd>                       z; // K^-1 u of each kept low-rank column (lowRankColumns), for the factor in hand
 	int                                                nEq = 0;
@@ -176,9 +175,7 @@ namespace {
 		}
 		return 12;
 	}
-}
 
-namespace {
 	// Adds the 3D sliding contacts' stiffness across their slip (S.across) to K's values v.
 	void addAcross(const ImplicitLinearSystem& S, double* v)
 	{
@@ -1286,19 +1283,24 @@ void ImplicitLogTimeSolver::action()
 	lineRatio0 = merit;
 }
 
-} // namespace yade
-
-namespace yade {
+template <class F> void ImplicitLogTimeSolver::petscOrFail(F&& call)
+{
+	// PETSc's errors arrive as exceptions of the module; each becomes the run's stop message
+	try {
+		call();
+	} catch (const std::exception& e) {
+		fail(std::string("linear solver ") + linearSolver + ": " + e.what());
+	}
+}
 
 void ImplicitLogTimeSolver::openLinearSolver()
 {
 	// The solver for the pattern just made, and the rigid-body modes GAMG's coarse levels must keep:
 	// every body translating (2D: x, y; 3D: x, y, z) and turning about the specimen's centre (2D: z;
 	// 3D: x, y, z), over the free equations; a turn moves a body by w x (p - c) and turns it by w.
-	ImplicitLinearSystem& S    = *sys;
-	const std::string     kind = linearSolver == "petsc-gamg" ? "gamg" : "mumps";
-	try {
-		if (!S.petsc || S.petscKind != kind) S.petsc = swelldem::linalg::openPetsc(kind), S.petscKind = kind;
+	ImplicitLinearSystem& S = *sys;
+	petscOrFail([&] {
+		if (!S.petsc || linearSolver != S.petsc->name()) S.petsc = swelldem::linalg::openPetsc(linearSolver);
 		// a body's DOFs are a block (multigrid aggregates bodies); bodies with none free are left out
 		std::vector<int> fullOf(size_t(S.nEq), -1);
 		int              blocks = 0;
@@ -1342,9 +1344,7 @@ void ImplicitLogTimeSolver::openLinearSolver()
 			}
 		}
 		S.petsc->setNearNullSpace(nModes, modes.data());
-	} catch (const std::exception& e) {
-		fail(std::string("linear solver ") + linearSolver + ": " + e.what());
-	}
+	});
 }
 
 bool ImplicitLogTimeSolver::factorValues()
@@ -1355,12 +1355,10 @@ bool ImplicitLogTimeSolver::factorValues()
 		S.chol.factorize(S.K);
 		return S.chol.info() == Eigen::Success;
 	}
-	try {
+	petscOrFail([&] {
 		S.petsc->setMatrix(S.nEq, S.K.outerIndexPtr(), S.K.innerIndexPtr(), S.K.valuePtr());
 		S.petsc->setup();
-	} catch (const std::exception& e) {
-		fail(std::string("linear solver ") + linearSolver + ": " + e.what());
-	}
+	});
 	return true;
 }
 
@@ -1369,16 +1367,14 @@ Eigen::MatrixXd ImplicitLogTimeSolver::directSolve(const Eigen::MatrixXd& b)
 	ImplicitLinearSystem& S = *sys;
 	if (!S.petsc) return S.chol.solve(b);
 	Eigen::MatrixXd x(b.rows(), b.cols());
-	try {
+	petscOrFail([&] {
 		for (long j = 0; j < b.cols(); ++j) {
 			const Eigen::VectorXd col = b.col(j);
 			Eigen::VectorXd       out(b.rows());
 			S.petsc->solve(col.data(), out.data(), 0.0, {}, true);
 			x.col(j) = out;
 		}
-	} catch (const std::exception& e) {
-		fail(std::string("linear solver ") + linearSolver + ": " + e.what());
-	}
+	});
 	return x;
 }
 
@@ -1400,7 +1396,7 @@ Eigen::VectorXd ImplicitLogTimeSolver::krylovSolve(const Eigen::VectorXd& r, con
 		symmetric = symmetric && use[i]->type != 2;
 	}
 	Eigen::VectorXd du(S.nEq);
-	try {
+	petscOrFail([&] {
 		S.petsc->setMatrix(S.nEq, S.K.outerIndexPtr(), S.K.innerIndexPtr(), values.data());
 		const auto report = S.petsc->solve(r.data(), du.data(), forcing, terms, symmetric);
 		++krylovSolves, krylovIterations += report.iterations;
@@ -1412,9 +1408,7 @@ Eigen::VectorXd ImplicitLogTimeSolver::krylovSolve(const Eigen::VectorXd& r, con
 				std::fflush(stdout);
 			}
 		}
-	} catch (const std::exception& e) {
-		fail(std::string("linear solver ") + linearSolver + ": " + e.what());
-	}
+	});
 	return du;
 }
 

@@ -204,6 +204,7 @@ private:
 	void                                  factor();
 	bool                                  factorValues(); // CHOLMOD's factor or PETSc's set-up of K's values; false: not positive definite
 	void                                  openLinearSolver();  // the PETSc solver of the chosen kind, and its rigid-body modes
+	template <class F> void               petscOrFail(F&& call); // call(), a PETSc error stopping the run with its message
 	Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic> directSolve(const Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>& b); // with the factor in hand
 	Eigen::Matrix<Real, Eigen::Dynamic, 1> krylovSolve(const Eigen::Matrix<Real, Eigen::Dynamic, 1>& r, const std::vector<const LowRankColumn*>& use);
 	Real                                  forcing = 0.1; // relative residual the next Krylov solve goes to (inexact Newton)

@@ -340,20 +340,32 @@ def run_test(assembly, mode, legs, age_days, n_idle=0, max_steps=400, tolerance=
     loader = _Loader(O, assembly, mode, legs, n_idle, left, right, max_steps)
     solver.stepHook = loader
     t0 = time.time()
+    drive_test(solver, loader)
+    return {"mode": mode, "strain": loader.strain, "stress_Pa": loader.stress, "branch": loader.branch, "broken": loader.broken,
+            "status": loader.status, "iterations": int(solver.totalIterations), "steps": len(loader.strain), "wall_s": time.time() - t0,
+            "tolerance": float(solver.tolerance)}
+
+
+def drive_test(solver, loader, step_iterations=None):
+    """Runs a loading test's solver until its loader (the stepHook, with attributes done and status)
+    ends it. A step that finds no equilibrium ends it with status 'no_equilibrium': within the
+    solver's maxIterations, or, with step_iterations, within that many iterations after
+    loader.it0 (the total iterations at its last converged step), for a step whose rounds of breaks
+    go on without reaching maxIterations soon (the specimen has failed). A schedule that ends first
+    leaves status 'schedule_end'."""
     from .dem import run_chunk_quietly
     try:
         while not loader.done and not solver.finished:
             # a test past its peak ends by 'no equilibrium': expected, so without YADE's FATAL lines
             run_chunk_quietly(solver, 2000)
+            if step_iterations and not loader.done and int(solver.totalIterations) - loader.it0 > step_iterations:
+                loader.done, loader.status = True, "no_equilibrium"
     except RuntimeError as e:
         if "no equilibrium" not in str(e):
             raise
         loader.done, loader.status = True, "no_equilibrium"
     if not loader.done:
         loader.status = "schedule_end"
-    return {"mode": mode, "strain": loader.strain, "stress_Pa": loader.stress, "branch": loader.branch, "broken": loader.broken,
-            "status": loader.status, "iterations": int(solver.totalIterations), "steps": len(loader.strain), "wall_s": time.time() - t0,
-            "tolerance": float(solver.tolerance)}
 
 
 def peak_is_lower_bound(stress):

@@ -9,6 +9,7 @@ import os
 import statistics
 import subprocess
 import sys
+import time
 
 BENCH_DIR = os.path.dirname(os.path.abspath(__file__))
 REPO_DIR = os.path.dirname(os.path.dirname(BENCH_DIR))
@@ -144,6 +145,19 @@ def run_worker(script, threads, args, timeout=3600):
         sys.stderr.write(p.stdout[-4000:] + p.stderr[-4000:])
         raise RuntimeError(f"{' '.join(cmd)} failed (exit {p.returncode})")
     return json.loads(lines[-1][len("BENCH_JSON "):])
+
+
+def run_result(cmd):
+    """Runs a child that prints its result as one line `RESULT {json}` (bench_implicit_damage.py);
+    returns (that dict, the process's wall time [s]). A child without the line raises RuntimeError
+    with the command and the last line of its stderr."""
+    t = time.time()
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    wall = time.time() - t
+    lines = [ln for ln in p.stdout.splitlines() if ln.startswith("RESULT ")]
+    if not lines:
+        raise RuntimeError(f"{' '.join(cmd)} failed: {(p.stderr.strip().splitlines() or ['?'])[-1]}")
+    return json.loads(lines[-1][len("RESULT "):]), wall
 
 
 def emit(data):

@@ -18,10 +18,7 @@ fraction is below the default 35 % so that cubes under 25 mm place their grains
 (docs/mesostructure.md).
 """
 import argparse
-import json
 import os
-import subprocess
-import time
 
 import _common as C  # noqa: E402  (puts py/ on the path)
 
@@ -32,14 +29,7 @@ def one(size, solver, fraction, spd, seed):
     cmd = [C.LAUNCHER, "-n", "-j", "1", "-x", SCRIPT, "--dim", "3", "--size-mm", str(size), str(size), str(size),
            "--solver", solver, "--scenario", "isr", "--behaviour", "viscoelastic", "--seed", str(seed),
            "--steps-per-decade", str(spd), "--aggregate-area-fraction", str(fraction)]
-    t = time.time()
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    out, err = p.stdout, p.stderr
-    wall = time.time() - t
-    lines = [ln for ln in out.splitlines() if ln.startswith("RESULT ")]
-    if not lines:
-        raise RuntimeError(f"{' '.join(cmd)} failed: {(err.strip().splitlines() or ['?'])[-1]}")
-    r = json.loads(lines[-1][len("RESULT "):])
+    r, wall = C.run_result(cmd)
     r.update(size_mm=size, process_wall_s=round(wall, 1))
     return r
 

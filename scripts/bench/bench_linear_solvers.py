@@ -14,10 +14,7 @@ the script prints every solver's run time over CHOLMOD's, both measured in this 
 strain's difference from CHOLMOD's. --steps 0 runs the whole swelling test.
 """
 import argparse
-import json
 import os
-import subprocess
-import time
 
 import _common as C  # noqa: E402  (puts py/ on the path)
 
@@ -29,13 +26,8 @@ def one(size, linear, steps, seed):
            "--solver", "implicit", "--scenario", "isr", "--behaviour", "viscoelastic", "--seed", str(seed),
            "--steps-per-decade", "2", "--aggregate-area-fraction", "0.2", "--steps", str(steps),
            "--solver-param", f"linearSolver={linear!r}"]
-    t = time.time()
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    lines = [ln for ln in p.stdout.splitlines() if ln.startswith("RESULT ")]
-    if not lines:
-        raise RuntimeError(f"{' '.join(cmd)} failed: {(p.stderr.strip().splitlines() or ['?'])[-1]}")
-    r = json.loads(lines[-1][len("RESULT "):])
-    r.update(size_mm=size, linear=linear, process_wall_s=round(time.time() - t, 1))
+    r, wall = C.run_result(cmd)
+    r.update(size_mm=size, linear=linear, process_wall_s=round(wall, 1))
     return r
 
 
