@@ -343,12 +343,12 @@ namespace {
 } // namespace
 } // namespace swelldem::linalg
 
-extern "C" __attribute__((visibility("default"))) swelldem::linalg::SparseSolver* swelldem_petsc_open(const char* kind, char* error, int errorSize)
+extern "C" __attribute__((visibility("default"))) swelldem::linalg::SparseSolver* swelldem_petsc_open(const char* name, char* error, int errorSize)
 {
 	try {
-		const std::string k(kind ? kind : "");
-		if (k != "gamg" && k != "mumps") throw std::runtime_error("unknown PETSc solver '" + k + "' (gamg or mumps)");
-		return new swelldem::linalg::PetscSolver(k == "gamg");
+		const std::string k(name ? name : "");
+		if (k != "petsc-gamg" && k != "petsc-mumps") throw std::runtime_error("unknown PETSc solver '" + k + "' (petsc-gamg or petsc-mumps)");
+		return new swelldem::linalg::PetscSolver(k == "petsc-gamg");
 	} catch (const std::exception& e) {
 		std::snprintf(error, size_t(errorSize), "%s", e.what());
 		return nullptr;

@@ -7,7 +7,7 @@
 namespace swelldem::linalg {
 
 namespace {
-	using OpenFn = SparseSolver* (*)(const char* kind, char* error, int errorSize);
+	using OpenFn = SparseSolver* (*)(const char* name, char* error, int errorSize);
 
 	// The module, opened once. RTLD_GLOBAL: Open MPI's components, which PETSc's MPI_Init loads,
 	// look up libmpi's symbols in the global scope.
@@ -42,13 +42,13 @@ std::string petscUnavailable()
 	return why;
 }
 
-std::unique_ptr<SparseSolver> openPetsc(const std::string& kind)
+std::unique_ptr<SparseSolver> openPetsc(const std::string& name)
 {
 	std::string why;
 	OpenFn      fn = moduleEntry(why);
 	if (!fn) throw std::runtime_error(why);
 	char          error[512] = { 0 };
-	SparseSolver* s          = fn(kind.c_str(), error, int(sizeof error));
+	SparseSolver* s          = fn(name.c_str(), error, int(sizeof error));
 	if (!s) throw std::runtime_error(error);
 	return std::unique_ptr<SparseSolver>(s);
 }

@@ -48,10 +48,10 @@ public:
 	virtual SolveReport solve(const double* b, double* x, double rtol, const std::vector<RankOneTerm>& terms, bool symmetric) = 0;
 };
 
-// kind "gamg" or "mumps". Throws std::runtime_error saying why it cannot (the module or PETSc
-// missing, an unknown kind). The module is looked for at SWELLDEM_PETSC_MODULE if that is set, else
+// name "petsc-gamg" or "petsc-mumps" (ImplicitLogTimeSolver.linearSolver's). Throws std::runtime_error
+// saying why it cannot (the module or PETSc missing, an unknown name). The module is looked for at SWELLDEM_PETSC_MODULE if that is set, else
 // where the build put it.
-std::unique_ptr<SparseSolver> openPetsc(const std::string& kind);
+std::unique_ptr<SparseSolver> openPetsc(const std::string& name);
 
 // Why PETSc cannot be opened here ("" if it can), without opening a solver: for checks before a run.
 std::string petscUnavailable();

@@ -28,22 +28,46 @@ dump(out)
 """
 
 
-def test_isr_and_asr_fine_rows_are_kept(yade_run, tmp_path):
+def avx2():
+    with open("/proc/cpuinfo") as f:
+        flags = next((line.split(":", 1)[1].split() for line in f if line.startswith("flags")), [])
+    return "avx2" in flags and "fma" in flags
+
+
+def test_isr_and_asr_fine_rows_are_kept(yade_run, tmp_path, monkeypatch):
+    # OpenBLAS picks its kernels by CPU, and CHOLMOD's supernodes go through them: the same code ends
+    # a damage run at numbers that differ in the 6th digit from one kernel set to another. The stored
+    # values were made with OpenBLAS's Haswell kernels, which every CPU with AVX2 and FMA runs: there
+    # the runs are bit for bit the stored ones (measured here, where OpenBLAS would pick SkylakeX).
+    if avx2():
+        monkeypatch.setenv("OPENBLAS_CORETYPE", "Haswell")
     with open(STORED) as f:
         stored = json.load(f)["runs"]
     res = yade_run(SCRIPT, os.path.join(REPO, "py"), tmp_path, *sorted(stored), threads=1, timeout=900)
+    # every deviation first, so that a failure says which runs and values moved and by how much
+    worst = {"strain": 0.0, "force": 0.0}
+    moved = []
     for name, want in stored.items():
         got = res[name]
-        # One thread runs the same code to the same numbers on one machine (bc105d4 and this code
-        # agree bit for bit here), but the BLAS kernels under CHOLMOD differ by CPU: the stored
-        # values, made on another machine, differ from this one's by up to 3.5e-6 relative in a
-        # strain of a damage run (ASR-fine elastic, where the broken contacts leave soft modes),
-        # 4e-9 in a force quantile and 1.6e-12 kN in a quantile that is zero. The tolerances are
-        # about 30 times those; a changed reading moves these values by percents.
-        assert got["strain_x"] == pytest.approx(want["strain_x"], rel=1e-4), name
-        assert got["strain_y"] == pytest.approx(want["strain_y"], rel=1e-4), name
+        for axis in ("strain_x", "strain_y"):
+            rel = abs(got[axis] / want[axis] - 1)
+            worst["strain"] = max(worst["strain"], rel)
+            if rel > 1.5e-4:
+                moved.append(f"{name} {axis} {got[axis]!r} against {want[axis]!r} ({rel:.1e} relative)")
         for kind, w in want["per_kind"].items():
             g = got["per_kind"][kind]
-            assert g["broken"] == w["broken"], (name, kind)
-            assert g["fn_p05_kN"] == pytest.approx(w["fn_p05_kN"], rel=1e-7, abs=5e-11), (name, kind)
-            assert g["fn_p95_kN"] == pytest.approx(w["fn_p95_kN"], rel=1e-7, abs=5e-11), (name, kind)
+            if g["broken"] != w["broken"]:
+                moved.append(f"{name} {kind} broken {g['broken']} against {w['broken']}")
+            for q in ("fn_p05_kN", "fn_p95_kN"):
+                dev = abs(g[q] - w[q])
+                worst["force"] = max(worst["force"], dev / max(abs(w[q]), 1e-6))
+                if dev > max(6e-5 * abs(w[q]), 5e-11):
+                    moved.append(f"{name} {kind} {q} {g[q]!r} against {w[q]!r}")
+    print(f"measured: strains within {worst['strain']:.1e} relative, force quantiles within {worst['force']:.1e}")
+    # Without AVX2 the kernels differ. Measured against the stored values with every kernel set this
+    # machine runs (OPENBLAS_CORETYPE Haswell, Zen: 0; SkylakeX, Cooperlake: 3.5e-6 in a strain and
+    # 3.8e-9 in a force quantile; Nehalem: 4.7e-6 and 1.9e-9; Sandybridge, Prescott: 2.2e-6 and
+    # 1.9e-6, in ASR-fine elastic with damage, where the broken contacts leave soft modes; 1.6e-12 kN
+    # in a quantile that is zero), the same broken counts. The tolerances are 30 times those; a
+    # changed reading moves these values by percents.
+    assert not moved, "; ".join(moved)
