@@ -1,11 +1,15 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // libswelldem_petsc.so: SparseSolver over PETSc's C API (Debian's petsc-dev, real double, 32-bit
-// indices). One process, PETSC_COMM_SELF.
+// indices) on PETSC_COMM_WORLD. In one process that is the process alone. Under mpirun -n P, rank 0
+// is YADE with the scene and the ranks above run swelldem_petsc_worker: every operation of the
+// solver on rank 0 first tells them which (a broadcast command), then all ranks carry it out
+// together, rank 0 handing each rank its rows of the matrix and of every vector.
 #include "SparseSolver.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <numeric>
+#include <cstdio>
 #include <petscksp.h>
 #include <stdexcept>
 
@@ -27,8 +31,11 @@ namespace {
 	// SIGTERM handling stay in charge) and with its errors returned, not printed: each becomes an
 	// exception here, and the solver's message. Its options (PETSC_OPTIONS, e.g.
 	// -swelldem_pc_gamg_threshold 0.02) reach the solvers through the prefix swelldem_.
+	bool finalized = false; // PetscFinalize done (at exit): nothing of PETSc's or MPI's may be called
+
 	void initialise()
 	{
+		if (finalized) throw std::runtime_error("PETSc was already finalized");
 		PetscBool done = PETSC_FALSE;
 		check(PetscInitialized(&done), "PetscInitialized");
 		if (done) return;
@@ -40,51 +47,126 @@ namespace {
 		PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
 	}
 
+	// -swelldem_<name> value, unless PETSC_OPTIONS already give it
+	void defaultOption(const std::string& name, const char* value)
+	{
+		PetscBool set = PETSC_FALSE;
+		check(PetscOptionsHasName(nullptr, "swelldem_", ("-" + name).c_str(), &set), "PetscOptionsHasName");
+		if (!set) check(PetscOptionsSetValue(nullptr, ("-swelldem_" + name).c_str(), value), "PetscOptionsSetValue");
+	}
+
+	MPI_Comm world() { return PETSC_COMM_WORLD; }
+	int      rankOf()
+	{
+		int r = 0;
+		MPI_Comm_rank(world(), &r);
+		return r;
+	}
+	int sizeOf()
+	{
+		int p = 1;
+		MPI_Comm_size(world(), &p);
+		return p;
+	}
+
+	// The commands rank 0 broadcasts to the other ranks, one before each collective operation.
+	enum Command : int { Open = 1, Close, Pattern, Values, Setup, Solve, Quit };
+
+	void announce(Command c)
+	{
+		if (sizeOf() == 1) return;
+		int code = c;
+		MPI_Bcast(&code, 1, MPI_INT, 0, world());
+	}
+
+	template <class T> void broadcast(T* data, size_t count)
+	{
+		if (sizeOf() > 1 && count > 0) MPI_Bcast(data, int(count * sizeof(T)), MPI_BYTE, 0, world());
+	}
+	template <class T> void broadcast(std::vector<T>& v)
+	{
+		size_t n = v.size();
+		broadcast(&n, 1);
+		v.resize(n);
+		broadcast(v.data(), n);
+	}
+
 	struct ShellContext {
-		Mat                             K = nullptr;
-		const std::vector<RankOneTerm>* terms = nullptr;
-		const std::vector<int>*         map   = nullptr; // equation -> row
+		Mat                       K = nullptr;
+		std::vector<RankOneTerm>  terms; // equations as global rows
+		int                       lo = 0, hi = 0; // this rank's rows
 	};
 
-	// y = K x + sum u (v . x)
+	// y = K x + sum u (v . x); each rank adds its rows' part of every v . x (one sum over the ranks)
 	PetscErrorCode shellMult(Mat A, Vec x, Vec y)
 	{
 		ShellContext* ctx = nullptr;
 		PetscCall(MatShellGetContext(A, &ctx));
 		PetscCall(MatMult(ctx->K, x, y));
+		if (ctx->terms.empty()) return 0;
 		const PetscScalar* xv;
 		PetscScalar*       yv;
 		PetscCall(VecGetArrayRead(x, &xv));
 		PetscCall(VecGetArray(y, &yv));
-		const std::vector<int>& map = *ctx->map;
-		for (const RankOneTerm& t : *ctx->terms) {
-			double s = 0;
-			for (int k = 0; k < 12; ++k)
-				if (t.eq[k] >= 0) s += t.v[k] * xv[map[size_t(t.eq[k])]];
-			for (int k = 0; k < 12; ++k)
-				if (t.eq[k] >= 0) yv[map[size_t(t.eq[k])]] += t.u[k] * s;
-		}
+		const int           lo = ctx->lo, hi = ctx->hi;
+		std::vector<double> s(ctx->terms.size(), 0.0);
+		for (size_t t = 0; t < s.size(); ++t)
+			for (int k = 0; k < 12; ++k) {
+				const int r = ctx->terms[t].eq[k];
+				if (r >= lo && r < hi) s[t] += ctx->terms[t].v[k] * xv[r - lo];
+			}
+		if (sizeOf() > 1) PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, s.data(), int(s.size()), MPI_DOUBLE, MPI_SUM, world()));
+		for (size_t t = 0; t < s.size(); ++t)
+			for (int k = 0; k < 12; ++k) {
+				const int r = ctx->terms[t].eq[k];
+				if (r >= lo && r < hi) yv[r - lo] += ctx->terms[t].u[k] * s[t];
+			}
 		PetscCall(VecRestoreArray(y, &yv));
 		PetscCall(VecRestoreArrayRead(x, &xv));
 		return 0;
 	}
 
+	// Rank 0 calls the SparseSolver interface; the ranks above call the collective parts (Pattern,
+	// Values, Setup, Solve) from swelldem_petsc_worker with the command rank 0 announced. The global
+	// matrix (the pattern, its values, the map of equations to rows) lives on rank 0 only; every rank
+	// holds its own rows, blocks of whole bodies, as PETSc's AIJ matrices do.
 	class PetscSolver : public SparseSolver {
 	public:
 		explicit PetscSolver(bool gamg)
 		    : gamg_(gamg)
 		{
 			initialise();
+			if (rankOf() == 0 && sizeOf() > 1) {
+				// the ranks above hold one solver, the one rank 0 announced last
+				if (live) throw std::runtime_error("under mpirun the ranks share one PETSc linear solver at a time, and another one is open");
+				announce(Open);
+				int g = gamg;
+				broadcast(&g, 1);
+				live = this;
+			}
 		}
-		~PetscSolver() override
+		~PetscSolver() override { close(); }
+
+		// Destroys the PETSc objects, on every rank together (MUMPS's factor is freed collectively);
+		// a second call, or one after PetscFinalize (the objects went with it), does nothing.
+		void close()
 		{
+			if (finalized || closed_) return;
+			closed_ = true;
+			if (live == this) {
+				announce(Close);
+				live = nullptr;
+			}
 			if (ksp_) KSPDestroy(&ksp_);
 			if (shell_) MatDestroy(&shell_);
 			if (op_) MatDestroy(&op_);
 			if (pre_) MatDestroy(&pre_);
-			if (b_) VecDestroy(&b_);
-			if (x_) VecDestroy(&x_);
+			if (toZero_) VecScatterDestroy(&toZero_);
+			for (Vec* v : { &b_, &x_, &onZero_ })
+				if (*v) VecDestroy(v);
 		}
+		static inline PetscSolver* live = nullptr; // rank 0 under mpirun: the solver the ranks above hold
+
 		const char* name() const override { return gamg_ ? "petsc-gamg" : "petsc-mumps"; }
 		bool        iterative() const override { return gamg_; }
 
@@ -95,10 +177,14 @@ namespace {
 
 		void setMatrix(int n, const int* colStart, const int* row, const double* value) override
 		{
-			const int nnz = colStart[n];
-			if (n != n_ || std::vector<int>(colStart, colStart + n + 1) != lowerStart_ || std::vector<int>(row, row + nnz) != lowerRow_
-			    || mapAsked_ != map_ || nFullAsked_ != nFull_)
+			const int  nnz  = colStart[n];
+			const bool same = n == n_ && size_t(nnz) == lowerRow_.size() && std::equal(colStart, colStart + n + 1, lowerStart_.begin())
+			                  && std::equal(row, row + nnz, lowerRow_.begin()) && mapAsked_ == map_ && nFullAsked_ == nFull_;
+			if (!same) {
 				makePattern(n, colStart, row);
+				announce(Pattern);
+				distributePattern();
+			}
 			// a held row's diagonal: the mean diagonal of its equations' kind (translation or
 			// rotation: the block position), so that Jacobi smoothing treats it as its neighbours
 			std::vector<double> diagSum(blockSize_, 0.0);
@@ -113,7 +199,8 @@ namespace {
 					full_[k]    = diagCount[d] > 0 ? diagSum[d] / diagCount[d] : 1.0;
 				}
 			}
-			copyValues(op_);
+			announce(Values);
+			distributeValues();
 		}
 
 		void setNearNullSpace(int count, const double* modes) override
@@ -144,9 +231,111 @@ namespace {
 		void setup() override
 		{
 			if (!pre_) throw std::runtime_error("PETSc solver set up before its matrix");
-			copyValues(pre_);
+			announce(Setup);
+			setupAll();
+		}
+
+		SolveReport solve(const double* b, double* x, double rtol, const std::vector<RankOneTerm>& terms, bool symmetric) override
+		{
+			if (!ksp_) throw std::runtime_error("PETSc solve before its setup");
+			// the terms' equations as global rows, the right-hand side on rank 0's copy of the vector
+			context_.terms = terms;
+			for (RankOneTerm& t : context_.terms)
+				for (int k = 0; k < 12; ++k)
+					if (t.eq[k] >= 0) t.eq[k] = fullRow(t.eq[k]);
+			PetscScalar* a;
+			check(VecGetArray(onZero_, &a), "VecGetArray");
+			std::fill(a, a + nFull_, 0.0);
+			for (int e = 0; e < n_; ++e)
+				a[fullRow(e)] = b[e];
+			check(VecRestoreArray(onZero_, &a), "VecRestoreArray");
+			announce(Solve);
+			const SolveReport report = solveAll(rtol, symmetric);
+			const PetscScalar* xv;
+			check(VecGetArrayRead(onZero_, &xv), "VecGetArrayRead");
+			for (int e = 0; e < n_; ++e)
+				x[e] = xv[fullRow(e)];
+			check(VecRestoreArrayRead(onZero_, &xv), "VecRestoreArrayRead");
+			return report;
+		}
+
+		// The collective parts, on every rank (rank 0's arguments are broadcast inside).
+
+		void distributePattern()
+		{
+			int sizes[2] = { nFull_, blockSize_ };
+			broadcast(sizes, 2);
+			nFull_ = sizes[0], blockSize_ = sizes[1];
+			const int P = sizeOf(), me = rankOf(), blocks = nFull_ / blockSize_;
+			// whole bodies a rank, as even as the blocks allow
+			std::vector<int> first(static_cast<size_t>(P) + 1);
+			for (int r = 0; r <= P; ++r)
+				first[size_t(r)] = r == P ? nFull_ : int(long(blocks) * r / P) * blockSize_;
+			context_.lo = first[size_t(me)], context_.hi = first[size_t(me) + 1];
+			const int m = context_.hi - context_.lo;
+			// each rank's rows of the compressed-row pattern: row lengths, then columns
+			std::vector<int> lengths(static_cast<size_t>(m));
+			std::vector<int> counts(static_cast<size_t>(P)), starts(static_cast<size_t>(P));
+			std::vector<int> allLengths;
+			if (me == 0) {
+				allLengths.resize(size_t(nFull_));
+				for (int i = 0; i < nFull_; ++i)
+					allLengths[size_t(i)] = rowStart_[size_t(i) + 1] - rowStart_[size_t(i)];
+			}
+			for (int r = 0; r < P; ++r)
+				counts[size_t(r)] = first[size_t(r) + 1] - first[size_t(r)], starts[size_t(r)] = first[size_t(r)];
+			MPI_Scatterv(allLengths.data(), counts.data(), starts.data(), MPI_INT, lengths.data(), m, MPI_INT, 0, world());
+			localStart_.assign(size_t(m) + 1, 0);
+			std::partial_sum(lengths.begin(), lengths.end(), localStart_.begin() + 1);
+			if (me == 0)
+				for (int r = 0; r < P; ++r)
+					starts[size_t(r)] = rowStart_[size_t(first[size_t(r)])], counts[size_t(r)] = rowStart_[size_t(first[size_t(r) + 1])] - starts[size_t(r)];
+			valueCounts_ = counts, valueStarts_ = starts;
+			localCol_.resize(size_t(localStart_.back()));
+			MPI_Scatterv(col_.data(), counts.data(), starts.data(), MPI_INT, localCol_.data(), int(localCol_.size()), MPI_INT, 0, world());
+
+			if (ksp_) KSPDestroy(&ksp_), ksp_ = nullptr, chosenType_ = nullptr;
+			for (Mat* a : { &shell_, &op_, &pre_ })
+				if (*a) MatDestroy(a);
+			if (toZero_) VecScatterDestroy(&toZero_);
+			for (Vec* v : { &b_, &x_, &onZero_ })
+				if (*v) VecDestroy(v);
+			const int           N = nFull_;
+			std::vector<double> zeros(localCol_.size(), 0.0);
+			for (Mat* a : { &op_, &pre_ }) {
+				check(MatCreate(world(), a), "MatCreate");
+				check(MatSetSizes(*a, m, m, N, N), "MatSetSizes");
+				check(MatSetType(*a, MATAIJ), "MatSetType");
+				check(MatSetBlockSize(*a, blockSize_), "MatSetBlockSize");
+				check(MatSeqAIJSetPreallocationCSR(*a, localStart_.data(), localCol_.data(), zeros.data()), "MatSeqAIJSetPreallocationCSR");
+				check(MatMPIAIJSetPreallocationCSR(*a, localStart_.data(), localCol_.data(), zeros.data()), "MatMPIAIJSetPreallocationCSR");
+				check(MatSetOption(*a, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
+				check(MatSetOption(*a, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "MatSetOption");
+				check(MatSetOption(*a, MAT_SPD, PETSC_TRUE), "MatSetOption");
+				check(MatSetOption(*a, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE), "MatSetOption");
+			}
+			context_.K = op_;
+			check(MatCreateShell(world(), m, m, N, N, &context_, &shell_), "MatCreateShell");
+			check(MatShellSetOperation(shell_, MATOP_MULT, reinterpret_cast<void (*)(void)>(shellMult)), "MatShellSetOperation");
+			check(MatCreateVecs(op_, &x_, &b_), "MatCreateVecs");
+			// the whole vector on rank 0 (empty elsewhere): b goes out from it, x comes back to it
+			check(VecScatterCreateToZero(x_, &toZero_, &onZero_), "VecScatterCreateToZero");
+		}
+
+		// this rank's values of the current matrix (rank 0's full_) into op_
+		void distributeValues()
+		{
+			localValues_.resize(localCol_.size());
+			MPI_Scatterv(full_.data(), valueCounts_.data(), valueStarts_.data(), MPI_DOUBLE, localValues_.data(), int(localValues_.size()),
+			             MPI_DOUBLE, 0, world());
+			setLocalValues(op_);
+		}
+
+		void setupAll()
+		{
+			setLocalValues(pre_);
 			if (!ksp_) {
-				check(KSPCreate(PETSC_COMM_SELF, &ksp_), "KSPCreate");
+				check(KSPCreate(world(), &ksp_), "KSPCreate");
 				check(KSPSetOptionsPrefix(ksp_, "swelldem_"), "KSPSetOptionsPrefix");
 				PC pc;
 				check(KSPGetPC(ksp_, &pc), "KSPGetPC");
@@ -158,13 +347,10 @@ namespace {
 					// matrix, not the operator with its rank-one terms: 12 mm ISR cube, first step,
 					// 64 CG iterations a solve against 153 with PETSc's point Jacobi on the operator.
 					// PETSC_OPTIONS given with the prefix swelldem_ take precedence.
-					PetscBool set = PETSC_FALSE;
-					check(PetscOptionsHasName(nullptr, "swelldem_", "-mg_levels_pc_type", &set), "PetscOptionsHasName");
-					if (!set) check(PetscOptionsSetValue(nullptr, "-swelldem_mg_levels_pc_type", "pbjacobi"), "PetscOptionsSetValue");
+					defaultOption("mg_levels_pc_type", "pbjacobi");
 					// four smoothing sweeps a level instead of two: 20 mm cube, first step, 201 CG
 					// iterations in 31 s against 355 in 61 s
-					check(PetscOptionsHasName(nullptr, "swelldem_", "-mg_levels_ksp_max_it", &set), "PetscOptionsHasName");
-					if (!set) check(PetscOptionsSetValue(nullptr, "-swelldem_mg_levels_ksp_max_it", "4"), "PetscOptionsSetValue");
+					defaultOption("mg_levels_ksp_max_it", "4");
 				} else {
 					check(KSPSetType(ksp_, KSPPREONLY), "KSPSetType");
 					check(PCSetType(pc, PCCHOLESKY), "PCSetType");
@@ -177,17 +363,22 @@ namespace {
 				if (gamg_) check(PCSetUseAmat(pc, PETSC_FALSE), "PCSetUseAmat");
 				check(KSPGetType(ksp_, &chosenType_), "KSPGetType");
 			}
-			if (gamg_ && haveNull_) {
-				std::vector<Vec> vecs(nullModes_.size());
-				for (size_t m = 0; m < nullModes_.size(); ++m) {
-					check(VecCreateSeq(PETSC_COMM_SELF, nFull_, &vecs[m]), "VecCreateSeq");
-					PetscScalar* a;
-					check(VecGetArray(vecs[m], &a), "VecGetArray");
-					std::copy(nullModes_[m].begin(), nullModes_[m].end(), a);
-					check(VecRestoreArray(vecs[m], &a), "VecRestoreArray");
+			int modes = gamg_ && haveNull_ ? int(nullModes_.size()) : 0;
+			broadcast(&modes, 1);
+			if (modes > 0) {
+				std::vector<Vec> vecs(static_cast<size_t>(modes));
+				for (int k = 0; k < modes; ++k) {
+					if (rankOf() == 0) {
+						PetscScalar* a;
+						check(VecGetArray(onZero_, &a), "VecGetArray");
+						std::copy(nullModes_[size_t(k)].begin(), nullModes_[size_t(k)].end(), a);
+						check(VecRestoreArray(onZero_, &a), "VecRestoreArray");
+					}
+					check(VecDuplicate(x_, &vecs[size_t(k)]), "VecDuplicate");
+					fromZero(vecs[size_t(k)]);
 				}
 				MatNullSpace nsp;
-				check(MatNullSpaceCreate(PETSC_COMM_SELF, PETSC_FALSE, PetscInt(vecs.size()), vecs.data(), &nsp), "MatNullSpaceCreate");
+				check(MatNullSpaceCreate(world(), PETSC_FALSE, PetscInt(vecs.size()), vecs.data(), &nsp), "MatNullSpaceCreate");
 				check(MatSetNearNullSpace(pre_, nsp), "MatSetNearNullSpace");
 				check(MatNullSpaceDestroy(&nsp), "MatNullSpaceDestroy");
 				for (Vec& v : vecs)
@@ -200,15 +391,18 @@ namespace {
 			check(KSPSetReusePreconditioner(ksp_, PETSC_TRUE), "KSPSetReusePreconditioner");
 		}
 
-		SolveReport solve(const double* b, double* x, double rtol, const std::vector<RankOneTerm>& terms, bool symmetric) override
+		// the right-hand side is on rank 0's copy (onZero_); the solution comes back there
+		SolveReport solveAll(double rtol, bool symmetric)
 		{
-			if (!ksp_) throw std::runtime_error("PETSc solve before its setup");
+			int flags[2] = { symmetric, 0 };
+			broadcast(flags, 2);
+			broadcast(&rtol, 1);
+			broadcast(context_.terms);
 			SolveReport report;
-			context_.terms = &terms;
 			if (gamg_) {
 				// The terms' sliding contacts make A unsymmetric: GMRES, with the preconditioner on the
 				// right so that the residual it measures is A's own; CG (the unpreconditioned residual) otherwise.
-				const bool cg = symmetric || terms.empty();
+				const bool cg = flags[0] || context_.terms.empty();
 				if (chosenType_ && (std::strcmp(chosenType_, KSPCG) == 0 || std::strcmp(chosenType_, KSPGMRES) == 0)) {
 					check(KSPSetType(ksp_, cg ? KSPCG : KSPGMRES), "KSPSetType");
 					if (!cg) check(KSPGMRESSetRestart(ksp_, 100), "KSPGMRESSetRestart");
@@ -217,19 +411,10 @@ namespace {
 				}
 				check(KSPSetTolerances(ksp_, rtol, 0.0, PETSC_DEFAULT, 5000), "KSPSetTolerances");
 			}
-			PetscScalar* a;
-			check(VecGetArray(b_, &a), "VecGetArray");
-			std::fill(a, a + nFull_, 0.0);
-			for (int e = 0; e < n_; ++e)
-				a[fullRow(e)] = b[e];
-			check(VecRestoreArray(b_, &a), "VecRestoreArray");
-			context_.map = &map_;
+			fromZero(b_);
 			check(KSPSolve(ksp_, b_, x_), "KSPSolve");
-			const PetscScalar* xv;
-			check(VecGetArrayRead(x_, &xv), "VecGetArrayRead");
-			for (int e = 0; e < n_; ++e)
-				x[e] = xv[fullRow(e)];
-			check(VecRestoreArrayRead(x_, &xv), "VecRestoreArrayRead");
+			check(VecScatterBegin(toZero_, x_, onZero_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+			check(VecScatterEnd(toZero_, x_, onZero_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
 			PetscInt           its = 0;
 			KSPConvergedReason why;
 			check(KSPGetIterationNumber(ksp_, &its), "KSPGetIterationNumber");
@@ -294,48 +479,44 @@ namespace {
 				std::copy(c.begin(), c.end(), col_.begin() + rowStart_[i]);
 				std::copy(s.begin(), s.end(), source_.begin() + rowStart_[i]);
 			}
-			if (ksp_) KSPDestroy(&ksp_), ksp_ = nullptr, chosenType_ = nullptr;
-			for (Mat* m : { &shell_, &op_, &pre_ })
-				if (*m) MatDestroy(m);
-			for (Vec* v : { &b_, &x_ })
-				if (*v) VecDestroy(v);
-			std::vector<double> zeros(col_.size(), 0.0);
-			for (Mat* m : { &op_, &pre_ }) {
-				check(MatCreate(PETSC_COMM_SELF, m), "MatCreate");
-				check(MatSetSizes(*m, N, N, N, N), "MatSetSizes");
-				check(MatSetType(*m, MATSEQAIJ), "MatSetType");
-				check(MatSetBlockSize(*m, blockSize_), "MatSetBlockSize");
-				check(MatSeqAIJSetPreallocationCSR(*m, rowStart_.data(), col_.data(), zeros.data()), "MatSeqAIJSetPreallocationCSR");
-				check(MatSetOption(*m, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
-				check(MatSetOption(*m, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "MatSetOption");
-				check(MatSetOption(*m, MAT_SPD, PETSC_TRUE), "MatSetOption");
-			}
-			context_.K = op_;
-			check(MatCreateShell(PETSC_COMM_SELF, N, N, N, N, &context_, &shell_), "MatCreateShell");
-			check(MatShellSetOperation(shell_, MATOP_MULT, reinterpret_cast<void (*)(void)>(shellMult)), "MatShellSetOperation");
-			check(VecCreateSeq(PETSC_COMM_SELF, N, &b_), "VecCreateSeq");
-			check(VecDuplicate(b_, &x_), "VecDuplicate");
 		}
 
-		void copyValues(Mat m)
+		void setLocalValues(Mat a)
 		{
-			PetscScalar* a;
-			check(MatSeqAIJGetArray(m, &a), "MatSeqAIJGetArray");
-			std::copy(full_.begin(), full_.end(), a);
-			check(MatSeqAIJRestoreArray(m, &a), "MatSeqAIJRestoreArray");
+			for (int i = 0; i + context_.lo < context_.hi; ++i) {
+				const PetscInt r = context_.lo + i, k = localStart_[size_t(i)];
+				check(MatSetValues(a, 1, &r, localStart_[size_t(i) + 1] - k, localCol_.data() + k, localValues_.data() + k, INSERT_VALUES),
+				      "MatSetValues");
+			}
+			check(MatAssemblyBegin(a, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+			check(MatAssemblyEnd(a, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+		}
+
+		// v (distributed) = rank 0's onZero_
+		void fromZero(Vec v)
+		{
+			check(VecScatterBegin(toZero_, onZero_, v, INSERT_VALUES, SCATTER_REVERSE), "VecScatterBegin");
+			check(VecScatterEnd(toZero_, onZero_, v, INSERT_VALUES, SCATTER_REVERSE), "VecScatterEnd");
 		}
 
 		int fullRow(int e) const { return map_[size_t(e)]; }
 
-		bool                             gamg_;
+		bool gamg_;
+		bool closed_ = false;
+		// rank 0: the global system and the map of the caller's equations to its rows
 		int                              n_ = -1, nFull_ = 0, blockSize_ = 1, nFullAsked_ = 0, blockAsked_ = 1;
 		std::vector<int>                 map_, mapAsked_;
 		std::vector<int>                 lowerStart_, lowerRow_, rowStart_, col_, source_;
 		std::vector<double>              full_;
 		std::vector<std::vector<double>> nullModes_;
 		bool                             haveNull_ = false;
+		std::vector<int>                 valueCounts_, valueStarts_; // each rank's share of col_ and full_
+		// every rank: its rows (context_.lo to hi) in compressed rows with global columns
+		std::vector<int>                 localStart_, localCol_;
+		std::vector<double>              localValues_;
 		Mat                              op_ = nullptr, pre_ = nullptr, shell_ = nullptr;
-		Vec                              b_ = nullptr, x_ = nullptr;
+		Vec                              b_ = nullptr, x_ = nullptr, onZero_ = nullptr;
+		VecScatter                       toZero_ = nullptr;
 		KSP                              ksp_ = nullptr;
 		KSPType                          chosenType_ = nullptr;
 		ShellContext                     context_;
@@ -343,14 +524,79 @@ namespace {
 } // namespace
 } // namespace swelldem::linalg
 
+using swelldem::linalg::PetscSolver;
+
 extern "C" __attribute__((visibility("default"))) swelldem::linalg::SparseSolver* swelldem_petsc_open(const char* name, char* error, int errorSize)
 {
 	try {
 		const std::string k(name ? name : "");
 		if (k != "petsc-gamg" && k != "petsc-mumps") throw std::runtime_error("unknown PETSc solver '" + k + "' (petsc-gamg or petsc-mumps)");
-		return new swelldem::linalg::PetscSolver(k == "petsc-gamg");
+		return new PetscSolver(k == "petsc-gamg");
 	} catch (const std::exception& e) {
 		std::snprintf(error, size_t(errorSize), "%s", e.what());
 		return nullptr;
+	}
+}
+
+// Rank 0 at exit under mpirun: releases the ranks above (which wait for a command, whether or not
+// the run used them) and finalizes PETSc and MPI, so that mpirun ends with rank 0's exit status.
+extern "C" __attribute__((visibility("default"))) void swelldem_petsc_release()
+{
+	using namespace swelldem::linalg;
+	if (finalized) return;
+	try {
+		initialise();
+		if (PetscSolver::live) PetscSolver::live->close(); // the scene, and its solver, outlive this call
+		announce(Quit);
+		PetscFinalize();
+	} catch (const std::exception& e) {
+		std::fprintf(stderr, "swelldem: releasing the MPI ranks failed: %s\n", e.what());
+	}
+	finalized = true;
+}
+
+// The ranks above 0 (scripts/yade-swelldem runs swelldem-solve-worker there): carry out rank 0's
+// commands until it quits. Returns the process's exit status; a failure aborts the whole job, since
+// rank 0 would otherwise wait for this rank in its next collective call.
+extern "C" __attribute__((visibility("default"))) int swelldem_petsc_worker()
+{
+	using namespace swelldem::linalg;
+	int rank = -1;
+	try {
+		initialise();
+		rank = rankOf();
+		if (rank == 0) throw std::runtime_error("rank 0 is YADE's (scripts/yade-swelldem); the worker runs on the ranks above it");
+		std::unique_ptr<PetscSolver> s;
+		for (;;) {
+			int c = 0;
+			MPI_Bcast(&c, 1, MPI_INT, 0, world());
+			if (c == Quit) break;
+			if (c == Open) {
+				int gamg = 0;
+				broadcast(&gamg, 1);
+				s.reset(new PetscSolver(gamg != 0));
+				continue;
+			}
+			if (c == Close) {
+				s.reset();
+				continue;
+			}
+			if (!s) throw std::runtime_error("command " + std::to_string(c) + " before a solver was opened");
+			switch (c) {
+			case Pattern: s->distributePattern(); break;
+			case Values: s->distributeValues(); break;
+			case Setup: s->setupAll(); break;
+			case Solve: s->solveAll(0.0, false); break;
+			default: throw std::runtime_error("unknown command " + std::to_string(c));
+			}
+		}
+		s.reset();
+		PetscFinalize();
+		finalized = true;
+		return 0;
+	} catch (const std::exception& e) {
+		std::fprintf(stderr, "swelldem solve worker (MPI rank %d): %s\n", rank, e.what());
+		MPI_Abort(MPI_COMM_WORLD, 1);
+		return 1;
 	}
 }

@@ -11,7 +11,7 @@ namespace {
 
 	// The module, opened once. RTLD_GLOBAL: Open MPI's components, which PETSc's MPI_Init loads,
 	// look up libmpi's symbols in the global scope.
-	OpenFn moduleEntry(std::string& why)
+	void* moduleSymbol(const char* symbol, std::string& why)
 	{
 		static void*       handle = nullptr;
 		static std::string failure;
@@ -29,10 +29,39 @@ namespace {
 		}
 		why = failure;
 		if (!handle) return nullptr;
-		auto fn = reinterpret_cast<OpenFn>(dlsym(handle, "swelldem_petsc_open"));
-		if (!fn) why = std::string("PETSc module without swelldem_petsc_open: ") + SWELLDEM_PETSC_MODULE_PATH;
+		void* fn = dlsym(handle, symbol);
+		if (!fn) why = std::string("PETSc module without ") + symbol + ": " + SWELLDEM_PETSC_MODULE_PATH;
 		return fn;
 	}
+
+	OpenFn moduleEntry(std::string& why) { return reinterpret_cast<OpenFn>(moduleSymbol("swelldem_petsc_open", why)); }
+
+	// Under mpirun the ranks above 0 wait for rank 0's commands from their start, whether or not
+	// this run uses PETSc: at exit rank 0 releases them (and finalizes MPI), however the run ended.
+	void releaseRanks()
+	{
+		std::string why;
+		if (void* fn = moduleSymbol("swelldem_petsc_release", why)) reinterpret_cast<void (*)()>(fn)();
+	}
+	[[maybe_unused]] const bool releaseAtExit = mpiRanks() > 1 && std::atexit(releaseRanks) == 0;
+}
+
+int mpiRanks()
+{
+	for (const char* name : { "OMPI_COMM_WORLD_SIZE", "PMI_SIZE" })
+		if (const char* v = std::getenv(name)) {
+			const int n = std::atoi(v);
+			if (n > 0) return n;
+		}
+	return 1;
+}
+
+int runSolveWorker()
+{
+	std::string why;
+	void*       fn = moduleSymbol("swelldem_petsc_worker", why);
+	if (!fn) throw std::runtime_error(why);
+	return reinterpret_cast<int (*)()>(fn)();
 }
 
 std::string petscUnavailable()

@@ -48,10 +48,19 @@ public:
 	virtual SolveReport solve(const double* b, double* x, double rtol, const std::vector<RankOneTerm>& terms, bool symmetric) = 0;
 };
 
-// name "petsc-gamg" or "petsc-mumps" (ImplicitLogTimeSolver.linearSolver's). Throws std::runtime_error
-// saying why it cannot (the module or PETSc missing, an unknown name). The module is looked for at SWELLDEM_PETSC_MODULE if that is set, else
+// name "petsc-gamg" or "petsc-mumps" (ImplicitLogTimeSolver.linearSolver's). Throws std::runtime_error saying why it cannot (the module or PETSc
+// missing, an unknown name). The module is looked for at SWELLDEM_PETSC_MODULE if that is set, else
 // where the build put it.
 std::unique_ptr<SparseSolver> openPetsc(const std::string& name);
+
+// The MPI ranks this process runs among (mpirun's environment: Open MPI's or MPICH's), 1 outside
+// mpirun. With more than one, rank 0 is YADE and the others only solve PETSc's linear systems.
+int mpiRanks();
+
+// What the MPI ranks above 0 run (swelldem-solve-worker): rank 0's commands, their share of each
+// PETSc solve, until rank 0 quits; returns the exit status. Throws std::runtime_error saying why
+// if PETSc cannot be opened.
+int runSolveWorker();
 
 // Why PETSc cannot be opened here ("" if it can), without opening a solver: for checks before a run.
 std::string petscUnavailable();

@@ -201,6 +201,7 @@ ImplicitLogTimeSolver::ImplicitLogTimeSolver()
 	iterationName  = "Newton";
 	// Newton needs a residual that depends on the state reached, not on the iterations' path
 	shearFromStepStart = true;
+	sharesRanks = [this] { return linearSolver != "cholmod"; };
 	progressDetail     = [this] {
 		return " (" + std::to_string(relaxationIterations - relaxationAtStepStart) + " relaxation, "
 		       + std::to_string(factorizations - factorizationsAtStepStart) + (linearSolver == "petsc-gamg" ? " preconditioner set-ups, " + std::to_string(krylovIterations - krylovAtStepStart) + " Krylov iterations" : " factorizations")

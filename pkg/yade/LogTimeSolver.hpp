@@ -152,6 +152,9 @@ protected:
 	/// Called when a step is about to be committed (before the progress line and the stepHook), so
 	/// that a solver records its own per-step results where the hook reads them.
 	std::function<void()> beforeCommit;
+	/// Whether the run, as set, takes part in the MPI ranks above 0 (mpirun -n P): only PETSc's
+	/// linear solves do; a run that would leave them idle is refused at its start.
+	std::function<bool()> sharesRanks;
 
 private:
 	void   initialize();
