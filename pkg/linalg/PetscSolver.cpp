@@ -6,6 +6,8 @@
 // together, rank 0 handing each rank its rows of the matrix and of every vector.
 #include "SparseSolver.hpp"
 #include <algorithm>
+#include <chrono>
+#include <thread>
 #include <cmath>
 #include <cstring>
 #include <numeric>
@@ -355,6 +357,10 @@ namespace {
 					check(KSPSetType(ksp_, KSPPREONLY), "KSPSetType");
 					check(PCSetType(pc, PCCHOLESKY), "PCSetType");
 					check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+					// MUMPS sizes the factor's workspace from its analysis's estimate plus ICNTL(14) per
+					// cent; across ranks the estimate falls short (12 mm ISR cube on 2 ranks: INFOG(1) =
+					// -9 at PETSc's default), with a 100 % margin it holds
+					if (sizeOf() > 1) defaultOption("mat_mumps_icntl_14", "100");
 				}
 				check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
 				// after the user's options: the shell operator (its rank-one terms) has no entries a
@@ -388,7 +394,24 @@ namespace {
 			check(KSPSetReusePreconditioner(ksp_, PETSC_FALSE), "KSPSetReusePreconditioner");
 			check(KSPSetOperators(ksp_, gamg_ ? shell_ : pre_, pre_), "KSPSetOperators");
 			check(KSPSetUp(ksp_), "KSPSetUp");
+			if (!gamg_) checkFactor();
 			check(KSPSetReusePreconditioner(ksp_, PETSC_TRUE), "KSPSetReusePreconditioner");
+		}
+
+		// A factorization that failed stops the run with MUMPS's own code (rather than a solve that
+		// gives NaN); INFOG is global, so every rank throws alike.
+		void checkFactor()
+		{
+			PC       pc;
+			Mat      F;
+			PetscInt info1 = 0, info2 = 0;
+			check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+			check(PCFactorGetMatrix(pc, &F), "PCFactorGetMatrix");
+			check(MatMumpsGetInfog(F, 1, &info1), "MatMumpsGetInfog");
+			check(MatMumpsGetInfog(F, 2, &info2), "MatMumpsGetInfog");
+			if (info1 < 0)
+				throw std::runtime_error("MUMPS's factorization failed: INFOG(1) = " + std::to_string(info1) + ", INFOG(2) = " + std::to_string(info2)
+				                         + (info1 == -8 || info1 == -9 ? " (workspace too small: raise -swelldem_mat_mumps_icntl_14 in PETSC_OPTIONS)" : ""));
 		}
 
 		// the right-hand side is on rank 0's copy (onZero_); the solution comes back there
@@ -596,6 +619,9 @@ extern "C" __attribute__((visibility("default"))) int swelldem_petsc_worker()
 		return 0;
 	} catch (const std::exception& e) {
 		std::fprintf(stderr, "swelldem solve worker (MPI rank %d): %s\n", rank, e.what());
+		// A collective failure (MUMPS's factor, a PETSc error) stops rank 0's run too: it records
+		// where and why and writes its results before this rank ends the job
+		std::this_thread::sleep_for(std::chrono::seconds(10));
 		MPI_Abort(MPI_COMM_WORLD, 1);
 		return 1;
 	}

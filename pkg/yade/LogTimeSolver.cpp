@@ -180,11 +180,7 @@ void LogTimeSolver::initialize()
 		                            + " is a disc of a 2D section (State.blockedDOFs containing 'zXY') and body " + std::to_string(spatial)
 		                            + " a sphere free out of the plane; allowed: all discs (2D) or all spheres (3D)");
 	nDim = spatial >= 0 ? 3 : 2;
-	// at the start, not in postLoad: the linear solver is often set after the solver is made
-	if (const int ranks = swelldem::linalg::mpiRanks(); ranks > 1 && !(sharesRanks && sharesRanks()))
-		throw std::invalid_argument("swelldem: " + getClassName() + " cannot start on " + std::to_string(ranks)
-		                            + " MPI ranks (mpirun): the ranks above 0 take part only in PETSc's linear solves; allowed under mpirun: "
-		                              "ImplicitLogTimeSolver with linearSolver 'petsc-gamg' or 'petsc-mumps'");
+	checkMpiRanks(); // here, not in postLoad: the linear solver is often set after the solver is made
 	requireContactKinds(scene, getClassName());
 	findLaw();
 	times = core::logTimes(tStart, tEnd, stepsPerDecade, std::vector<double>(extraTimes.begin(), extraTimes.end()));
@@ -220,6 +216,14 @@ void LogTimeSolver::initialize()
 	}
 	beginPhysicalStep();
 	kindsStale = false;
+}
+
+void LogTimeSolver::checkMpiRanks() const
+{
+	if (const int ranks = swelldem::linalg::mpiRanks(); ranks > 1 && !(sharesRanks && sharesRanks()))
+		throw std::invalid_argument("swelldem: " + getClassName() + " cannot start on " + std::to_string(ranks)
+		                            + " MPI ranks (mpirun): the ranks above 0 take part only in PETSc's linear solves; allowed under mpirun: "
+		                              "ImplicitLogTimeSolver with linearSolver 'petsc-gamg' or 'petsc-mumps'");
 }
 
 void LogTimeSolver::beginPhysicalStep()

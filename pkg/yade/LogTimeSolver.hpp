@@ -92,11 +92,16 @@ public:
 		cls.add_property("plannedTimes", &LogTimeSolver::plannedTimes,
 		                 "Physical times the schedule settings (tStart, tEnd, stepsPerDecade, extraTimes) give, tStart first: what "
 		                 "times will hold once the run starts, known before it (e.g. to compute a field on the steps ahead) [day]");
+		cls.def("checkMpiRanks", &LogTimeSolver::checkMpiRanks,
+		        "Raises ValueError when the process runs under mpirun -n P (P > 1) and this solver, as set, would leave the "
+		        "ranks above 0 idle: only ImplicitLogTimeSolver with linearSolver 'petsc-gamg' or 'petsc-mumps' shares its work "
+		        "(the linear solves) with them. The run checks it at its start; a script calls it to refuse earlier.");
 		cls.add_property("stepHook", &LogTimeSolver::getStepHook, &LogTimeSolver::setStepHook,
 		                 "Python callable run without arguments after every converged physical step, or None. Not saved "
 		                 "with the scene: set it again after O.load [-]");
 	}
 	std::vector<Real>     plannedTimes() const;
+	void                  checkMpiRanks() const;
 	int                   nSteps() const { return times.empty() ? 0 : int(times.size()) - 1; }
 	static const long     kParallelBodies = 4000; // below this many discs a loop is cheaper than waking OpenMP's threads
 	/// The blocked-DOF bit of each translation and rotation axis.

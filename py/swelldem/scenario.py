@@ -873,7 +873,9 @@ def make_solver(test, extra_times=()):
         settings["tolerance"] = test.tolerance
     settings.update(test.solver_params)
     try:
-        return dem.make_solver(test.solver, **settings)
+        solver = dem.make_solver(test.solver, **settings)
+        solver.checkMpiRanks()  # under mpirun, a solver that would leave the other ranks idle: before any work
+        return solver
     except TypeError as e:  # e.g. fallbackIterations=abc: boost.python cannot make a number of it
         why = " ".join(str(e).split())
         text = ", ".join(f"{k}={v!r}" for k, v in test.solver_params.items())
