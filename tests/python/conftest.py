@@ -31,6 +31,16 @@ def without_keys(v, keys):
     return v
 
 
+#: Open MPI's settings for the tests' mpirun: CI runs as root, and a machine may count fewer slots
+#: than the ranks asked for.
+MPI_ENV = {"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1", "OMPI_MCA_rmaps_base_oversubscribe": "1"}
+
+
+def mpirun(ranks):
+    """The command prefix that runs the launcher on `ranks` MPI ranks ([] for one)."""
+    return ["mpirun", "-n", str(ranks)] if ranks > 1 else []
+
+
 def build_dir():
     return os.path.abspath(os.environ.get("SWELLDEM_BUILD_DIR") or os.path.join(REPO, "build"))
 
@@ -42,14 +52,14 @@ class YadeRun:
     def __init__(self, tmp_path):
         self.tmp = tmp_path
 
-    def __call__(self, script, *args, timeout=600, threads=None, check=True):
+    def __call__(self, script, *args, timeout=600, threads=None, check=True, ranks=1):
         path = self.tmp / "script.py"
         prelude = ("import json as _json\n"
                    "def dump(obj):\n"
                    "    with open('result.json', 'w') as f: _json.dump(obj, f)\n")
         path.write_text(prelude + script)
-        cmd = [LAUNCHER] + (["-j", str(threads)] if threads else []) + ["-n", "-x", str(path)] + [str(a) for a in args]
-        env = dict(os.environ, SWELLDEM_BUILD_DIR=build_dir())
+        cmd = mpirun(ranks) + [LAUNCHER] + (["-j", str(threads)] if threads else []) + ["-n", "-x", str(path)] + [str(a) for a in args]
+        env = dict(os.environ, SWELLDEM_BUILD_DIR=build_dir(), **(MPI_ENV if ranks > 1 else {}))
         proc = subprocess.run(cmd, cwd=self.tmp, capture_output=True, text=True, timeout=timeout, env=env)
         if check and proc.returncode != 0:
             raise AssertionError(f"yade-swelldem failed ({proc.returncode}):\nSTDOUT:\n{proc.stdout[-4000:]}\nSTDERR:\n{proc.stderr[-4000:]}")
