@@ -159,13 +159,7 @@ namespace {
 				announce(Close);
 				live = nullptr;
 			}
-			if (ksp_) KSPDestroy(&ksp_);
-			if (shell_) MatDestroy(&shell_);
-			if (op_) MatDestroy(&op_);
-			if (pre_) MatDestroy(&pre_);
-			if (toZero_) VecScatterDestroy(&toZero_);
-			for (Vec* v : { &b_, &x_, &onZero_ })
-				if (*v) VecDestroy(v);
+			destroyObjects();
 		}
 		static inline PetscSolver* live = nullptr; // rank 0 under mpirun: the solver the ranks above hold
 
@@ -296,12 +290,7 @@ namespace {
 			localCol_.resize(size_t(localStart_.back()));
 			MPI_Scatterv(col_.data(), counts.data(), starts.data(), MPI_INT, localCol_.data(), int(localCol_.size()), MPI_INT, 0, world());
 
-			if (ksp_) KSPDestroy(&ksp_), ksp_ = nullptr, chosenType_ = nullptr;
-			for (Mat* a : { &shell_, &op_, &pre_ })
-				if (*a) MatDestroy(a);
-			if (toZero_) VecScatterDestroy(&toZero_);
-			for (Vec* v : { &b_, &x_, &onZero_ })
-				if (*v) VecDestroy(v);
+			destroyObjects();
 			const int           N = nFull_;
 			std::vector<double> zeros(localCol_.size(), 0.0);
 			for (Mat* a : { &op_, &pre_ }) {
@@ -430,15 +419,15 @@ namespace {
 		// the right-hand side is on rank 0's copy (onZero_); the solution comes back there
 		SolveReport solveAll(double rtol, bool symmetric)
 		{
-			int flags[2] = { symmetric, 0 };
-			broadcast(flags, 2);
+			int sym = symmetric;
+			broadcast(&sym, 1);
 			broadcast(&rtol, 1);
 			broadcast(context_.terms);
 			SolveReport report;
 			if (gamg_) {
 				// The terms' sliding contacts make A unsymmetric: GMRES, with the preconditioner on the
 				// right so that the residual it measures is A's own; CG (the unpreconditioned residual) otherwise.
-				const bool cg = flags[0] || context_.terms.empty();
+				const bool cg = sym || context_.terms.empty();
 				if (chosenType_ && (std::strcmp(chosenType_, KSPCG) == 0 || std::strcmp(chosenType_, KSPGMRES) == 0)) {
 					check(KSPSetType(ksp_, cg ? KSPCG : KSPGMRES), "KSPSetType");
 					if (!cg) check(KSPGMRESSetRestart(ksp_, 100), "KSPGMRESSetRestart");
@@ -515,6 +504,17 @@ namespace {
 				std::copy(c.begin(), c.end(), col_.begin() + rowStart_[i]);
 				std::copy(s.begin(), s.end(), source_.begin() + rowStart_[i]);
 			}
+		}
+
+		// the PETSc objects of the current pattern (PETSc's Destroy calls null the handles)
+		void destroyObjects()
+		{
+			if (ksp_) KSPDestroy(&ksp_), chosenType_ = nullptr;
+			for (Mat* a : { &shell_, &op_, &pre_ })
+				if (*a) MatDestroy(a);
+			if (toZero_) VecScatterDestroy(&toZero_);
+			for (Vec* v : { &b_, &x_, &onZero_ })
+				if (*v) VecDestroy(v);
 		}
 
 		void setLocalValues(Mat a)
