@@ -201,10 +201,11 @@ ImplicitLogTimeSolver::ImplicitLogTimeSolver()
 	iterationName  = "Newton";
 	// Newton needs a residual that depends on the state reached, not on the iterations' path
 	shearFromStepStart = true;
-	sharesRanks = [this] { return linearSolver != "cholmod"; };
+	// under mpirun auto takes petsc-gamg, where PETSc can be loaded
+	sharesRanks = [this] { return linearSolver == "auto" ? swelldem::linalg::petscUnavailable().empty() : linearSolver != "cholmod"; };
 	progressDetail     = [this] {
 		return " (" + std::to_string(relaxationIterations - relaxationAtStepStart) + " relaxation, "
-		       + std::to_string(factorizations - factorizationsAtStepStart) + (linearSolver == "petsc-gamg" ? " preconditioner set-ups, " + std::to_string(krylovIterations - krylovAtStepStart) + " Krylov iterations" : " factorizations")
+		       + std::to_string(factorizations - factorizationsAtStepStart) + (linearSolverUsed == "petsc-gamg" ? " preconditioner set-ups, " + std::to_string(krylovIterations - krylovAtStepStart) + " Krylov iterations" : " factorizations")
 		       + (activeChanges > 0 ? ", " + std::to_string(activeChanges) + " contacts changing state in the last iteration" : std::string())
 		       + (fallback ? ", finished by dynamic relaxation: fallback" : std::string()) + ")";
 	};
@@ -236,9 +237,10 @@ void ImplicitLogTimeSolver::postLoad()
 	core::require(stallTolerance >= 0 && stallTolerance < 1, "ImplicitLogTimeSolver.stallTolerance", stallTolerance, "0 <= stallTolerance < 1");
 	core::require(fallbackIterations >= 0, "ImplicitLogTimeSolver.fallbackIterations", fallbackIterations, ">= 0 (0: never)");
 	core::requireOpenInterval("ImplicitLogTimeSolver.fallbackTolerance", fallbackTolerance, 0, 1);
-	if (linearSolver != "cholmod" && linearSolver != "petsc-gamg" && linearSolver != "petsc-mumps")
+	core::require(autoGamgEquations >= 1, "ImplicitLogTimeSolver.autoGamgEquations", autoGamgEquations, ">= 1");
+	if (linearSolver != "auto" && linearSolver != "cholmod" && linearSolver != "petsc-gamg" && linearSolver != "petsc-mumps")
 		throw std::invalid_argument("ImplicitLogTimeSolver.linearSolver = '" + linearSolver
-		                            + "' is not a linear solver; allowed: cholmod, petsc-gamg, petsc-mumps");
+		                            + "' is not a linear solver; allowed: auto, cholmod, petsc-gamg, petsc-mumps");
 	if (linearSolver.rfind("petsc-", 0) == 0) {
 		const std::string why = swelldem::linalg::petscUnavailable();
 		if (!why.empty()) throw std::invalid_argument("ImplicitLogTimeSolver.linearSolver = '" + linearSolver + "': " + why);
@@ -330,6 +332,20 @@ void ImplicitLogTimeSolver::choosePins()
 	pinnedDofs       = { 3 * a, 3 * a + 1, 3 * f + (std::abs(d[0]) >= std::abs(d[1]) ? 1 : 0) };
 }
 
+void ImplicitLogTimeSolver::chooseLinearSolver()
+{
+	if (linearSolver != "auto") {
+		linearSolverUsed = linearSolver;
+		return;
+	}
+	// auto decides once a run, on its first system, so that a run does not change solver as its
+	// contacts break. A 2D factor's fill grows as N log N and stays cheap; a 3D factor's grows as the
+	// spheres^1.43 and its time as ^2, where GAMG's grows about as the spheres (docs/performance.md,
+	// section 7: the crossover of whole ISR damage runs on this machine)
+	const bool ranks = swelldem::linalg::mpiRanks() > 1, big = sys->nb == 6 && sys->nEq >= autoGamgEquations;
+	linearSolverUsed = (ranks || big) && swelldem::linalg::petscUnavailable().empty() ? "petsc-gamg" : "cholmod";
+}
+
 void ImplicitLogTimeSolver::numberEquations()
 {
 	// Equation numbering and sparsity pattern, remade when the contact graph or the held DOFs change.
@@ -339,7 +355,8 @@ void ImplicitLogTimeSolver::numberEquations()
 	numberDofs(masks);
 	makePattern();
 	findSlots();
-	if (linearSolver == "cholmod") {
+	chooseLinearSolver();
+	if (linearSolverUsed == "cholmod") {
 		sys->petsc.reset();
 		sys->chol.setMode(Eigen::CholmodSupernodalLLt);
 		sys->chol.analyzePattern(sys->K);
@@ -683,7 +700,7 @@ void ImplicitLogTimeSolver::factor()
 	factorSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 	++factorizations;
 	if (!ok)
-		fail("the tangent stiffness (" + std::to_string(S.nEq) + " equations) is not positive definite; " + linearSolver
+		fail("the tangent stiffness (" + std::to_string(S.nEq) + " equations) is not positive definite; " + linearSolverUsed
 		     + " could not factor it");
 	factoredValues.assign(S.K.valuePtr(), S.K.valuePtr() + S.K.nonZeros());
 	factoredStiffness = S.stiffness;
@@ -1290,7 +1307,7 @@ template <class F> void ImplicitLogTimeSolver::petscOrFail(F&& call)
 	try {
 		call();
 	} catch (const std::exception& e) {
-		fail(std::string("linear solver ") + linearSolver + ": " + e.what());
+		fail(std::string("linear solver ") + linearSolverUsed + ": " + e.what());
 	}
 }
 
@@ -1301,7 +1318,7 @@ void ImplicitLogTimeSolver::openLinearSolver()
 	// 3D: x, y, z), over the free equations; a turn moves a body by w x (p - c) and turns it by w.
 	ImplicitLinearSystem& S = *sys;
 	petscOrFail([&] {
-		if (!S.petsc || linearSolver != S.petsc->name()) S.petsc = swelldem::linalg::openPetsc(linearSolver);
+		if (!S.petsc || linearSolverUsed != S.petsc->name()) S.petsc = swelldem::linalg::openPetsc(linearSolverUsed);
 		// a body's DOFs are a block (multigrid aggregates bodies); bodies with none free are left out
 		std::vector<int> fullOf(size_t(S.nEq), -1);
 		int              blocks = 0;

@@ -223,7 +223,7 @@ void LogTimeSolver::checkMpiRanks() const
 	if (const int ranks = swelldem::linalg::mpiRanks(); ranks > 1 && !(sharesRanks && sharesRanks()))
 		throw std::invalid_argument("swelldem: " + getClassName() + " cannot start on " + std::to_string(ranks)
 		                            + " MPI ranks (mpirun): the ranks above 0 take part only in PETSc's linear solves; allowed under mpirun: "
-		                              "ImplicitLogTimeSolver with linearSolver 'petsc-gamg' or 'petsc-mumps'");
+		                              "ImplicitLogTimeSolver with linearSolver 'auto', 'petsc-gamg' or 'petsc-mumps'");
 }
 
 void LogTimeSolver::beginPhysicalStep()

@@ -94,7 +94,7 @@ public:
 		                 "times will hold once the run starts, known before it (e.g. to compute a field on the steps ahead) [day]");
 		cls.def("checkMpiRanks", &LogTimeSolver::checkMpiRanks,
 		        "Raises ValueError when the process runs under mpirun -n P (P > 1) and this solver, as set, would leave the "
-		        "ranks above 0 idle: only ImplicitLogTimeSolver with linearSolver 'petsc-gamg' or 'petsc-mumps' shares its work "
+		        "ranks above 0 idle: only ImplicitLogTimeSolver with linearSolver 'auto', 'petsc-gamg' or 'petsc-mumps' shares its work "
 		        "(the linear solves) with them. The run checks it at its start; a script calls it to refuse earlier.");
 		cls.add_property("stepHook", &LogTimeSolver::getStepHook, &LogTimeSolver::setStepHook,
 		                 "Python callable run without arguments after every converged physical step, or None. Not saved "

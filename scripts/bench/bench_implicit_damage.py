@@ -89,7 +89,7 @@ def main(argv):
         "break_rule": a.break_rule, "status": status, "iterations": solver.totalIterations, "wall_s": round(wall, 2),
         "factorizations": getattr(solver, "factorizations", None), "factor_wall_s": getattr(solver, "factorSeconds", None),
         "factor_nonzeros": getattr(solver, "factorNonZeros", None), "build_s": round(t0 - t_build, 2),
-        "linear_solver": getattr(solver, "linearSolver", None), "krylov_solves": getattr(solver, "krylovSolves", None),
+        "linear_solver": getattr(solver, "linearSolverUsed", None), "krylov_solves": getattr(solver, "krylovSolves", None),
         "krylov_iterations": getattr(solver, "krylovIterations", None), "krylov_failures": getattr(solver, "krylovFailures", None), "settings": dict(item.split("=", 1) for item in a.solver_param),
         "strain_x": float(strain["eps_xx"]), "strain_y": float(strain["eps_yy"]), "broken_pct": pct,
         "n_particles": int(len(assembly.x)), "n_contacts": int(len(ys.contacts)),

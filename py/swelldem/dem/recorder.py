@@ -272,9 +272,10 @@ class StepRecorder:
         r["newton_iterations"] = int(solver.totalIterations) - r["relaxation_iterations"]
         r["fallback_steps"] = fallback_steps(solver)
         if hasattr(solver, "factorizations"):
-            # the direct solve's cost: numeric factorizations, symbolic analyses, their time and the
-            # factor's entries (its fill-in, what sets the memory of a large 3D specimen)
-            r["linear_solver"] = {"factorizations": int(solver.factorizations), "analyses": int(solver.analyses),
+            # the linear solver the run used (linearSolver auto resolved) and the direct solve's cost:
+            # numeric factorizations (GAMG: preconditioner set-ups), symbolic analyses, their time and
+            # the factor's entries (its fill-in, what sets the memory of a large 3D specimen)
+            r["linear_solver"] = {"name": str(solver.linearSolverUsed), "factorizations": int(solver.factorizations), "analyses": int(solver.analyses),
                                   "factor_wall_s": float(solver.factorSeconds), "factor_nonzeros": float(solver.factorNonZeros)}
         r["n_steps"] = int(solver.nSteps)  # the run's physical steps, done or not: a run that stopped has fewer times_days
         r["unbalanced_history"] = {"every": int(getattr(solver, "historyEvery", 0)),
