@@ -434,7 +434,12 @@ namespace {
 				const bool cg = sym || context_.terms.empty();
 				if (chosenType_ && (std::strcmp(chosenType_, KSPCG) == 0 || std::strcmp(chosenType_, KSPGMRES) == 0)) {
 					check(KSPSetType(ksp_, cg ? KSPCG : KSPGMRES), "KSPSetType");
-					if (!cg) check(KSPGMRESSetRestart(ksp_, 100), "KSPGMRESSetRestart");
+					// Each rank-one term can put one eigenvalue of the preconditioned operator outside
+					// the cluster GAMG gives K; a restart shorter than the terms loses them at every
+					// cycle and stagnates (20 mm ISR cube, step 5, 106 terms: no convergence at 5000
+					// iterations with 100). So a cycle holds twice the terms and the cluster's own
+					// iterations.
+					if (!cg) check(KSPGMRESSetRestart(ksp_, PetscInt(std::clamp<size_t>(2 * context_.terms.size() + 60, 100, 600))), "KSPGMRESSetRestart");
 					check(KSPSetPCSide(ksp_, cg ? PC_LEFT : PC_RIGHT), "KSPSetPCSide");
 					check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
 				}

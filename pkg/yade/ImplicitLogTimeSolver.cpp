@@ -11,6 +11,7 @@
 #include <tuple>
 #include <cmath>
 #include <omp.h>
+#include <unistd.h>
 
 namespace yade {
 namespace core = swelldem::core;
@@ -237,7 +238,7 @@ void ImplicitLogTimeSolver::postLoad()
 	core::require(stallTolerance >= 0 && stallTolerance < 1, "ImplicitLogTimeSolver.stallTolerance", stallTolerance, "0 <= stallTolerance < 1");
 	core::require(fallbackIterations >= 0, "ImplicitLogTimeSolver.fallbackIterations", fallbackIterations, ">= 0 (0: never)");
 	core::requireOpenInterval("ImplicitLogTimeSolver.fallbackTolerance", fallbackTolerance, 0, 1);
-	core::require(autoGamgEquations >= 1, "ImplicitLogTimeSolver.autoGamgEquations", autoGamgEquations, ">= 1");
+	core::require(autoFactorMemoryShare > 0, "ImplicitLogTimeSolver.autoFactorMemoryShare", autoFactorMemoryShare, "> 0");
 	if (linearSolver != "auto" && linearSolver != "cholmod" && linearSolver != "petsc-gamg" && linearSolver != "petsc-mumps")
 		throw std::invalid_argument("ImplicitLogTimeSolver.linearSolver = '" + linearSolver
 		                            + "' is not a linear solver; allowed: auto, cholmod, petsc-gamg, petsc-mumps");
@@ -332,18 +333,17 @@ void ImplicitLogTimeSolver::choosePins()
 	pinnedDofs       = { 3 * a, 3 * a + 1, 3 * f + (std::abs(d[0]) >= std::abs(d[1]) ? 1 : 0) };
 }
 
-void ImplicitLogTimeSolver::chooseLinearSolver()
+double ImplicitLogTimeSolver::factorPeakBytes(double entries)
 {
-	if (linearSolver != "auto") {
-		linearSolverUsed = linearSolver;
-		return;
-	}
-	// auto decides once a run, on its first system, so that a run does not change solver as its
-	// contacts break. A 2D factor's fill grows as N log N and stays cheap; a 3D factor's grows as the
-	// spheres^1.43 and its time as ^2, where GAMG's grows about as the spheres (docs/performance.md,
-	// section 7: the crossover of whole ISR damage runs on this machine)
-	const bool ranks = swelldem::linalg::mpiRanks() > 1, big = sys->nb == 6 && sys->nEq >= autoGamgEquations;
-	linearSolverUsed = (ranks || big) && swelldem::linalg::petscUnavailable().empty() ? "petsc-gamg" : "cholmod";
+	// CHOLMOD's supernodal factorization at its peak: 8 bytes an entry of L and its indices and
+	// workspace (FCC lattice of 74,439 spheres, 6.1e8 entries: 4.9 GB for L, 7 GB peak)
+	return 11.5 * entries;
+}
+
+double ImplicitLogTimeSolver::physicalMemoryBytes()
+{
+	const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
+	return pages > 0 && size > 0 ? double(pages) * double(size) : 0.0;
 }
 
 void ImplicitLogTimeSolver::numberEquations()
@@ -355,14 +355,31 @@ void ImplicitLogTimeSolver::numberEquations()
 	numberDofs(masks);
 	makePattern();
 	findSlots();
-	chooseLinearSolver();
+	// auto decides once a run, on its first system, so that a run does not change solver as its
+	// contacts break: CHOLMOD wherever its factor fits (on whole 3D damage runs it is the faster of
+	// the two at every size measured, docs/performance.md section 7), GAMG where the factor's
+	// peak would pass autoFactorMemoryShare of the memory, and on MPI ranks, which only PETSc uses.
+	// A 2D factor's fill grows as N log N and stays small.
+	const bool choosing = linearSolver == "auto" && linearSolverUsed.empty(), petscThere = swelldem::linalg::petscUnavailable().empty();
+	if (linearSolver != "auto") linearSolverUsed = linearSolver;
+	else if (choosing) linearSolverUsed = swelldem::linalg::mpiRanks() > 1 && petscThere ? "petsc-gamg" : "cholmod";
 	if (linearSolverUsed == "cholmod") {
 		sys->petsc.reset();
 		sys->chol.setMode(Eigen::CholmodSupernodalLLt);
 		sys->chol.analyzePattern(sys->K);
 		factorNonZeros = sys->chol.cholmod().lnz;
-	} else
-		openLinearSolver(), factorNonZeros = 0;
+		const double peak = factorPeakBytes(factorNonZeros), memory = physicalMemoryBytes();
+		if (choosing && sys->nb == 6 && petscThere && memory > 0 && peak > autoFactorMemoryShare * memory) {
+			linearSolverUsed = "petsc-gamg";
+			if (verbose) {
+				std::printf("swelldem: linearSolver auto: CHOLMOD's factor of these %d equations would hold %.3g entries, %.1f GB at its "
+				            "peak, more than %.0f %% of the machine's %.1f GB (autoFactorMemoryShare): petsc-gamg\n",
+				            sys->nEq, double(factorNonZeros), peak / 1e9, 100 * autoFactorMemoryShare, memory / 1e9);
+				std::fflush(stdout);
+			}
+		}
+	}
+	if (linearSolverUsed != "cholmod") openLinearSolver(), factorNonZeros = 0;
 	refactorSavedValues();
 	sys->active.assign(sys->contacts.size(), 0);
 	++analyses;

@@ -54,16 +54,15 @@ class ImplicitLogTimeSolver : public LogTimeSolver {
 public:
 #define SWELLDEM_IMPLICIT_ATTRS(X)                                                                                                                             \
 	X(string, linearSolver, "auto", swelldem_attr::Setting,                                                                                              \
-	  "Solver of each Newton move's sparse system: auto (the default: petsc-gamg for a 3D system of autoGamgEquations or more and on more " \
-	  "than one MPI rank; cholmod otherwise and wherever PETSc cannot be loaded; decided on the run's first system, see linearSolverUsed), "    \
-	  "cholmod (CHOLMOD's supernodal Cholesky factor), petsc-gamg (PETSc's conjugate "            \
+	  "Solver of each Newton move's sparse system: auto (the default: cholmod, unless its factor of a 3D system would pass "                \
+	  "autoFactorMemoryShare of the memory or the run has more than one MPI rank, then petsc-gamg where PETSc can be loaded; decided on "    \
+	  "the run's first system, see linearSolverUsed), cholmod (CHOLMOD's supernodal Cholesky factor), petsc-gamg (PETSc's conjugate "            \
 	  "gradients preconditioned by its algebraic multigrid GAMG, which is given the bodies' rigid-body modes and aggregates bodies; GMRES "    \
 	  "while sliding contacts' coupling makes the tangent unsymmetric; each solve only as exact as the Newton iteration needs), petsc-mumps " \
 	  "(MUMPS's Cholesky factor through PETSc). PETSc's own options reach its solvers with the prefix swelldem_ (PETSC_OPTIONS) [-]")         \
-	X(long, autoGamgEquations, 150000, swelldem_attr::Setting,                                                                                         \
-	  "With linearSolver auto, the size from which a 3D system is solved by petsc-gamg rather than cholmod: the crossover of whole ISR "        \
-	  "damage runs on a 2-core machine (docs/performance.md, section 7; 150,000 equations is a 22 mm cube of 25,000 spheres). Where memory "     \
-	  "or cores differ, measure it again [-]")                                                                                                \
+	X(Real, autoFactorMemoryShare, 0.5, swelldem_attr::Setting,                                                                                       \
+	  "With linearSolver auto, the share of the machine's physical memory above which the peak of CHOLMOD's factorization of a 3D "        \
+	  "system (11.5 bytes an entry of the factor, known from its analysis before any factorization) sends the run to petsc-gamg [-]")    \
 	X(string, linearSolverUsed, "", swelldem_attr::Result, "The linear solver the run uses (linearSolver, auto resolved); empty before its first system [-]") \
 	X(long, krylovSolves, 0, swelldem_attr::Result, "Linear solves by a Krylov method (petsc-gamg) so far [-]")                                   \
 	X(long, krylovIterations, 0, swelldem_attr::Result, "Krylov iterations of those solves so far [-]")                                            \
@@ -191,7 +190,8 @@ private:
 	void                                  choosePins();
 	void                                  newtonStep();
 	// the parts of a Newton iteration, on sys
-	void                                  chooseLinearSolver();               // linearSolverUsed: linearSolver, auto resolved once a run
+	static double                         factorPeakBytes(double entries);    // CHOLMOD's factorization peak for a factor of these entries
+	static double                         physicalMemoryBytes();              // 0 where unknown
 	void                                  numberEquations();                  // equations, pattern and analysis when the graph changed
 	std::vector<unsigned>                 heldDofMasks() const;               // per body, its blocked x, y, rz
 	bool                                  sameEquations(const std::vector<unsigned>& masks) const; // the numbering still holds

@@ -93,19 +93,20 @@ dump({"used": solver.linearSolverUsed, "krylov": solver.krylovSolves,
 """
 
 
-@pytest.mark.parametrize("dim, auto_from, used", [(3, None, "cholmod"), (3, 1000, "petsc-gamg"), (2, 1, "cholmod")])
-def test_auto_takes_cholmod_below_its_size_and_gamg_from_it_in_3d(yade_run, dim, auto_from, used):
-    """linearSolver auto, the default: a 3D system of autoGamgEquations or more goes to petsc-gamg,
-    a smaller one and every 2D one to cholmod (a 2D factor stays cheap), decided on the first
-    system. The free FCC lattice (172 spheres, 1,026 equations) and the free square lattice of discs
-    (49 discs) still meet their closed form."""
+@pytest.mark.parametrize("dim, share, used", [(3, None, "cholmod"), (3, 1e-9, "petsc-gamg"), (2, 1e-9, "cholmod")])
+def test_auto_keeps_cholmod_unless_its_3d_factor_would_not_fit(yade_run, dim, share, used):
+    """linearSolver auto, the default: cholmod, unless the peak of its factorization of a 3D system
+    would pass autoFactorMemoryShare of the machine's memory, then petsc-gamg; a 2D system keeps
+    cholmod (a 2D factor stays small). The free FCC lattice (172 spheres, 1,026 equations, a factor
+    of about 1e5 entries) goes to GAMG only when the share is made tiny; it and the free square
+    lattice of discs still meet their closed form."""
     from test_implicit_solver import LATTICE
-    setting = "" if auto_from is None else f"solver.autoGamgEquations = {auto_from}\n"
+    setting = "" if share is None else f"solver.autoFactorMemoryShare = {share}\n"
     scene = (FCC if dim == 3 else LATTICE).format(n=7, tol=1e-10, solver="ImplicitLogTimeSolver")
     res = yade_run(scene + setting + AUTO_END, threads=1)
     opening = D_INF * (larive(3650.0) - larive(1.0))
     gap_err = max(abs(g - opening) for g in res["gap"]) / opening
-    print(f"measured: {dim}D, autoGamgEquations {auto_from}: {res['used']}, {res['krylov']} Krylov solves, openings within {gap_err:.1e}")
+    print(f"measured: {dim}D, autoFactorMemoryShare {share}: {res['used']}, {res['krylov']} Krylov solves, openings within {gap_err:.1e}")
     assert res["used"] == used and (res["krylov"] > 0) == (used == "petsc-gamg")
     # measured 7.9e-13 and 1.7e-12 (3D), 6.0e-8 (2D, whose rotations' diagonal shift moves the moves
     # by ~5e-8: test_implicit_solver's free lattice, bound 1e-7 there); bounds as there
