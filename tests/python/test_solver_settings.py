@@ -78,7 +78,7 @@ def test_solver_param_overrides_the_options_and_reaches_the_adr(tmp_path):
 @pytest.mark.parametrize("args,needle", [
     (("--solver-param", "fallbackIterationz=3"),
      "swelldem: solver_params name = 'fallbackIterationz' is not a setting of the implicit solver (ImplicitLogTimeSolver); "
-     "allowed: breakOneAtATime, changingLimit, colliderLabel, colliderPeriod, divergenceRatio, extraTimes, fallbackIterations, "),
+     "allowed: autoFactorMemoryShare, breakOneAtATime, changingLimit, colliderLabel, colliderPeriod, divergenceRatio, extraTimes, fallbackIterations, "),
     (("--solver", "adr", "--solver-param", "fallbackIterations=3"),
      "swelldem: solver_params name = 'fallbackIterations' is not a setting of the adr solver (AdrLogTimeIntegrator); allowed: "),
     (("--solver-param", "totalIterations=3"), "'totalIterations' is not a setting of the implicit solver"),
