@@ -60,7 +60,7 @@ public:
 	  "gradients preconditioned by its algebraic multigrid GAMG, which is given the bodies' rigid-body modes and aggregates bodies; GMRES "    \
 	  "while sliding contacts' coupling makes the tangent unsymmetric; each solve only as exact as the Newton iteration needs), petsc-mumps " \
 	  "(MUMPS's Cholesky factor through PETSc). PETSc's own options reach its solvers with the prefix swelldem_ (PETSC_OPTIONS) [-]")         \
-	X(Real, autoFactorMemoryShare, 0.5, swelldem_attr::Setting,                                                                                       \
+	X(Real, autoFactorMemoryShare, 0.6, swelldem_attr::Setting,                                                                                       \
 	  "With linearSolver auto, the share of the machine's physical memory above which the peak of CHOLMOD's factorization of a 3D "        \
 	  "system (11.5 bytes an entry of the factor, known from its analysis before any factorization) sends the run to petsc-gamg [-]")    \
 	X(string, linearSolverUsed, "", swelldem_attr::Result, "The linear solver the run uses (linearSolver, auto resolved); empty before its first system [-]") \
