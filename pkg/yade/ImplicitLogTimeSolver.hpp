@@ -74,8 +74,9 @@ public:
 	X(Real, rotationRegularization, -1, swelldem_attr::Setting,                                                                                         \
 	  "Diagonal shift of the tangent's rotations, relative to each particle's own diagonal and at most to the median particle's: a disc held "  \
 	  "by one contact can roll about it (no stiffness in the tangent), and the shift bounds its move along that mode; rotations converge by "  \
-	  "this factor an iteration, the equilibrium is YADE's residual; < 0: by dimension, 1e-3 for discs (cracking sections settle faster) "     \
-	  "and 1e-5 for spheres (a 12 mm ISR cube: 542 Newton iterations against 883 at 1e-3) [-]")                                              \
+	  "this factor an iteration, the equilibrium is YADE's residual; < 0: by dimension, 1e-3 for discs (cracking sections settle faster), "  \
+	  "1e-5 for spheres with a factor (a 12 mm ISR cube: 542 Newton iterations against 883 at 1e-3) and 1e-3 for spheres with petsc-gamg "  \
+	  "(whose CG stagnates on nearly free rotations at 1e-5: the 40 mm ISR cube) [-]")                                              \
 	X(Real, refactorTolerance, 1e-3, swelldem_attr::Setting,                                                                                            \
 	  "The Cholesky factor is kept while no entry of the tangent differs from the factored one by more than this fraction of the largest "    \
 	  "entry (the geometry moving within a step; a state change, a break or an aging kind's new step differ by far more); the iteration is "   \
