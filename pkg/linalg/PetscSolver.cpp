@@ -231,7 +231,7 @@ namespace {
 			setupAll();
 		}
 
-		SolveReport solve(const double* b, double* x, double rtol, const std::vector<RankOneTerm>& terms, bool symmetric) override
+		SolveReport solve(const double* b, double* x, double rtol, const std::vector<RankOneTerm>& terms, bool symmetric, int gmresLimit) override
 		{
 			if (!ksp_) throw std::runtime_error("PETSc solve before its setup");
 			// the terms' equations as global rows, the right-hand side on rank 0's copy of the vector
@@ -246,7 +246,7 @@ namespace {
 				a[fullRow(e)] = b[e];
 			check(VecRestoreArray(onZero_, &a), "VecRestoreArray");
 			announce(Solve);
-			const SolveReport report = solveAll(rtol, symmetric);
+			const SolveReport report = solveAll(rtol, symmetric, gmresLimit);
 			const PetscScalar* xv;
 			check(VecGetArrayRead(onZero_, &xv), "VecGetArrayRead");
 			for (int e = 0; e < n_; ++e)
@@ -423,17 +423,20 @@ namespace {
 		}
 
 		// the right-hand side is on rank 0's copy (onZero_); the solution comes back there
-		SolveReport solveAll(double rtol, bool symmetric)
+		SolveReport solveAll(double rtol, bool symmetric, int gmresLimit)
 		{
 			int sym = symmetric;
 			broadcast(&sym, 1);
 			broadcast(&rtol, 1);
+			broadcast(&gmresLimit, 1);
 			broadcast(context_.terms);
 			SolveReport report;
+			bool        gmres = false;
 			if (gamg_) {
 				// The terms' sliding contacts make A unsymmetric: GMRES, with the preconditioner on the
 				// right so that the residual it measures is A's own; CG (the unpreconditioned residual) otherwise.
 				const bool cg = sym || context_.terms.empty();
+				gmres         = !cg;
 				if (chosenType_ && (std::strcmp(chosenType_, KSPCG) == 0 || std::strcmp(chosenType_, KSPGMRES) == 0)) {
 					check(KSPSetType(ksp_, cg ? KSPCG : KSPGMRES), "KSPSetType");
 					// Each rank-one term can put one eigenvalue of the preconditioned operator outside
@@ -445,7 +448,13 @@ namespace {
 					check(KSPSetPCSide(ksp_, cg ? PC_LEFT : PC_RIGHT), "KSPSetPCSide");
 					check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
 				}
-				check(KSPSetTolerances(ksp_, rtol, 0.0, PETSC_DEFAULT, 5000), "KSPSetTolerances");
+				// CG's cap is a safeguard. GMRES's is the rule: a cracking round's tangent has hundreds of
+				// sliding contacts' columns, each an eigenvalue off GAMG's cluster, and is close to
+				// singular; GMRES then takes hundreds of iterations a solve (20 mm ISR cube, day 100 to 316:
+				// 195 on average, up to 936, some ended by a breakdown) for a move that the round's next
+				// iterations, by Newton with the active set changing or by relaxation after changingLimit,
+				// revise anyway. At 100 the step took 282 s against more than 1,816 s uncapped.
+				check(KSPSetTolerances(ksp_, rtol, 0.0, PETSC_DEFAULT, cg ? 5000 : gmresLimit), "KSPSetTolerances");
 			}
 			fromZero(b_);
 			check(KSPSolve(ksp_, b_, x_), "KSPSolve");
@@ -464,6 +473,7 @@ namespace {
 				report.residual = bn > 0 ? rn / bn : 0;
 			}
 			if (!report.converged) report.reason = KSPConvergedReasons[why];
+			report.atLimit = gmres && why == KSP_DIVERGED_ITS;
 			return report;
 		}
 
@@ -633,7 +643,7 @@ extern "C" __attribute__((visibility("default"))) int swelldem_petsc_worker()
 			case Pattern: s->distributePattern(); break;
 			case Values: s->distributeValues(); break;
 			case Setup: s->setupAll(); break;
-			case Solve: s->solveAll(0.0, false); break;
+			case Solve: s->solveAll(0.0, false, 0); break;
 			default: throw std::runtime_error("unknown command " + std::to_string(c));
 			}
 		}

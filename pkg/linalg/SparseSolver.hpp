@@ -21,6 +21,7 @@ struct SolveReport {
 	bool        converged  = true;  // the Krylov method reached rtol
 	double      residual   = 0;     // its final residual 2-norm, relative to |b|
 	std::string reason;             // PETSc's converged reason, when not converged
+	bool        atLimit    = false; // GMRES stopped at its gmresLimit
 };
 
 class SparseSolver {
@@ -44,8 +45,9 @@ public:
 	// x = A^-1 b. A direct solver: A is the matrix of the last setup and the terms are not taken
 	// (the caller applies them with Woodbury's formula, as with CHOLMOD). An iterative one: A is the
 	// current matrix plus the terms, to the relative residual rtol, preconditioned by the last
-	// setup; conjugate gradients where A is symmetric, GMRES otherwise.
-	virtual SolveReport solve(const double* b, double* x, double rtol, const std::vector<RankOneTerm>& terms, bool symmetric) = 0;
+	// setup; conjugate gradients where A is symmetric, GMRES otherwise, which stops after gmresLimit
+	// iterations with the least residual it reached.
+	virtual SolveReport solve(const double* b, double* x, double rtol, const std::vector<RankOneTerm>& terms, bool symmetric, int gmresLimit) = 0;
 };
 
 // name "petsc-gamg" or "petsc-mumps" (ImplicitLogTimeSolver.linearSolver's). Throws std::runtime_error saying why it cannot (the module or PETSc

@@ -238,6 +238,7 @@ void ImplicitLogTimeSolver::postLoad()
 	core::require(stallTolerance >= 0 && stallTolerance < 1, "ImplicitLogTimeSolver.stallTolerance", stallTolerance, "0 <= stallTolerance < 1");
 	core::require(fallbackIterations >= 0, "ImplicitLogTimeSolver.fallbackIterations", fallbackIterations, ">= 0 (0: never)");
 	core::requireOpenInterval("ImplicitLogTimeSolver.fallbackTolerance", fallbackTolerance, 0, 1);
+	core::require(gmresLimit >= 1, "ImplicitLogTimeSolver.gmresLimit", gmresLimit, ">= 1");
 	core::require(autoFactorMemoryShare > 0, "ImplicitLogTimeSolver.autoFactorMemoryShare", autoFactorMemoryShare, "> 0");
 	if (linearSolver != "auto" && linearSolver != "cholmod" && linearSolver != "petsc-gamg" && linearSolver != "petsc-mumps")
 		throw std::invalid_argument("ImplicitLogTimeSolver.linearSolver = '" + linearSolver
@@ -1410,7 +1411,7 @@ Eigen::MatrixXd ImplicitLogTimeSolver::directSolve(const Eigen::MatrixXd& b)
 		for (long j = 0; j < b.cols(); ++j) {
 			const Eigen::VectorXd col = b.col(j);
 			Eigen::VectorXd       out(b.rows());
-			S.petsc->solve(col.data(), out.data(), 0.0, {}, true);
+			S.petsc->solve(col.data(), out.data(), 0.0, {}, true, 1);
 			x.col(j) = out;
 		}
 	});
@@ -1437,11 +1438,12 @@ Eigen::VectorXd ImplicitLogTimeSolver::krylovSolve(const Eigen::VectorXd& r, con
 	Eigen::VectorXd du(S.nEq);
 	petscOrFail([&] {
 		S.petsc->setMatrix(S.nEq, S.K.outerIndexPtr(), S.K.innerIndexPtr(), values.data());
-		const auto report = S.petsc->solve(r.data(), du.data(), forcing, terms, symmetric);
+		const auto report = S.petsc->solve(r.data(), du.data(), forcing, terms, symmetric, int(std::min<long>(gmresLimit, 1L << 30)));
 		++krylovSolves, krylovIterations += report.iterations;
 		if (!report.converged) {
 			++krylovFailures;
-			if (verbose) {
+			// a solve at gmresLimit is the rule, not news; a breakdown is
+			if (verbose && !report.atLimit) {
 				std::printf("swelldem: step %d/%d: the Krylov solve stopped at relative residual %.2e (asked %.1e) after %d iterations: %s\n",
 				            step, nSteps(), report.residual, double(forcing), report.iterations, report.reason.c_str());
 				std::fflush(stdout);

@@ -63,11 +63,14 @@ public:
 	X(Real, autoFactorMemoryShare, 0.6, swelldem_attr::Setting,                                                                                       \
 	  "With linearSolver auto, the share of the machine's physical memory above which the peak of CHOLMOD's factorization of a 3D "        \
 	  "system (11.5 bytes an entry of the factor, known from its analysis before any factorization) sends the run to petsc-gamg [-]")    \
+	X(long, gmresLimit, 100, swelldem_attr::Setting,                                                                                                   \
+	  "petsc-gamg: iterations after which a GMRES solve (the tangent made unsymmetric by sliding contacts' shear-normal coupling) stops; "  \
+	  "its move, the least residual over those iterations, goes through the line search as a converged one does [-]")                        \
 	X(string, linearSolverUsed, "", swelldem_attr::Result, "The linear solver the run uses (linearSolver, auto resolved); empty before its first system [-]") \
 	X(long, krylovSolves, 0, swelldem_attr::Result, "Linear solves by a Krylov method (petsc-gamg) so far [-]")                                   \
 	X(long, krylovIterations, 0, swelldem_attr::Result, "Krylov iterations of those solves so far [-]")                                            \
 	X(long, krylovFailures, 0, swelldem_attr::Result,                                                                                                  \
-	  "Krylov solves that stopped before their tolerance (their move still goes through the line search) so far [-]")                          \
+	  "Krylov solves that stopped before their tolerance, at gmresLimit or by a breakdown (their move still goes through the line search) so far [-]")                          \
 	X(Real, regularization, 1e-12, swelldem_attr::Setting,                                                                                                \
 	  "Relative diagonal shift of the tangent for local mechanisms (a disc held by one contact, open cracks): it changes "                         \
 	  "the iteration path, never the converged equilibrium, which is YADE's residual at the tolerance [-]")                                         \
