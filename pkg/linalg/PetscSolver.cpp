@@ -431,12 +431,10 @@ namespace {
 			broadcast(&gmresLimit, 1);
 			broadcast(context_.terms);
 			SolveReport report;
-			bool        gmres = false;
+			// The terms' sliding contacts make A unsymmetric: GMRES, with the preconditioner on the
+			// right so that the residual it measures is A's own; CG (the unpreconditioned residual) otherwise.
+			const bool cg = sym || context_.terms.empty();
 			if (gamg_) {
-				// The terms' sliding contacts make A unsymmetric: GMRES, with the preconditioner on the
-				// right so that the residual it measures is A's own; CG (the unpreconditioned residual) otherwise.
-				const bool cg = sym || context_.terms.empty();
-				gmres         = !cg;
 				if (chosenType_ && (std::strcmp(chosenType_, KSPCG) == 0 || std::strcmp(chosenType_, KSPGMRES) == 0)) {
 					check(KSPSetType(ksp_, cg ? KSPCG : KSPGMRES), "KSPSetType");
 					// Each rank-one term can put one eigenvalue of the preconditioned operator outside
@@ -473,7 +471,7 @@ namespace {
 				report.residual = bn > 0 ? rn / bn : 0;
 			}
 			if (!report.converged) report.reason = KSPConvergedReasons[why];
-			report.atLimit = gmres && why == KSP_DIVERGED_ITS;
+			report.atLimit = gamg_ && !cg && why == KSP_DIVERGED_ITS;
 			return report;
 		}
 
