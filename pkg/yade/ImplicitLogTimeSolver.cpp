@@ -202,8 +202,12 @@ ImplicitLogTimeSolver::ImplicitLogTimeSolver()
 	iterationName  = "Newton";
 	// Newton needs a residual that depends on the state reached, not on the iterations' path
 	shearFromStepStart = true;
-	// under mpirun auto takes petsc-gamg, where PETSc can be loaded
-	sharesRanks = [this] { return linearSolver == "auto" ? swelldem::linalg::petscUnavailable().empty() : linearSolver != "cholmod"; };
+	// under mpirun auto takes petsc-gamg, where PETSc can be loaded; a run keeps the solver its first
+	// system took (auto on one process: often cholmod), also when it goes on after O.load under mpirun
+	sharesRanks = [this] {
+		if (!linearSolverUsed.empty()) return linearSolverUsed != "cholmod";
+		return linearSolver == "auto" ? swelldem::linalg::petscUnavailable().empty() : linearSolver != "cholmod";
+	};
 	progressDetail     = [this] {
 		return " (" + std::to_string(relaxationIterations - relaxationAtStepStart) + " relaxation, "
 		       + std::to_string(factorizations - factorizationsAtStepStart) + (linearSolverUsed == "petsc-gamg" ? " preconditioner set-ups, " + std::to_string(krylovIterations - krylovAtStepStart) + " Krylov iterations" : " factorizations")
@@ -238,7 +242,8 @@ void ImplicitLogTimeSolver::postLoad()
 	core::require(stallTolerance >= 0 && stallTolerance < 1, "ImplicitLogTimeSolver.stallTolerance", stallTolerance, "0 <= stallTolerance < 1");
 	core::require(fallbackIterations >= 0, "ImplicitLogTimeSolver.fallbackIterations", fallbackIterations, ">= 0 (0: never)");
 	core::requireOpenInterval("ImplicitLogTimeSolver.fallbackTolerance", fallbackTolerance, 0, 1);
-	core::require(gmresLimit >= 1, "ImplicitLogTimeSolver.gmresLimit", gmresLimit, ">= 1");
+	// PETSc counts iterations in a 32-bit int
+	core::require(gmresLimit >= 1 && gmresLimit <= (1L << 30), "ImplicitLogTimeSolver.gmresLimit", gmresLimit, "1 <= gmresLimit <= 1073741824");
 	core::require(autoFactorMemoryShare > 0, "ImplicitLogTimeSolver.autoFactorMemoryShare", autoFactorMemoryShare, "> 0");
 	if (linearSolver != "auto" && linearSolver != "cholmod" && linearSolver != "petsc-gamg" && linearSolver != "petsc-mumps")
 		throw std::invalid_argument("ImplicitLogTimeSolver.linearSolver = '" + linearSolver
@@ -1438,7 +1443,7 @@ Eigen::VectorXd ImplicitLogTimeSolver::krylovSolve(const Eigen::VectorXd& r, con
 	Eigen::VectorXd du(S.nEq);
 	petscOrFail([&] {
 		S.petsc->setMatrix(S.nEq, S.K.outerIndexPtr(), S.K.innerIndexPtr(), values.data());
-		const auto report = S.petsc->solve(r.data(), du.data(), forcing, terms, symmetric, int(std::min<long>(gmresLimit, 1L << 30)));
+		const auto report = S.petsc->solve(r.data(), du.data(), forcing, terms, symmetric, int(gmresLimit));
 		++krylovSolves, krylovIterations += report.iterations;
 		if (!report.converged) {
 			++krylovFailures;

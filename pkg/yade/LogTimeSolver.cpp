@@ -221,9 +221,12 @@ void LogTimeSolver::initialize()
 void LogTimeSolver::checkMpiRanks() const
 {
 	if (const int ranks = swelldem::linalg::mpiRanks(); ranks > 1 && !(sharesRanks && sharesRanks()))
-		throw std::invalid_argument("swelldem: " + getClassName() + " cannot start on " + std::to_string(ranks)
+		throw std::invalid_argument("swelldem: " + getClassName() + " cannot " + (times.empty() ? "start" : "go on") + " on " + std::to_string(ranks)
 		                            + " MPI ranks (mpirun): the ranks above 0 take part only in PETSc's linear solves; allowed under mpirun: "
-		                              "ImplicitLogTimeSolver with linearSolver 'auto', 'petsc-gamg' or 'petsc-mumps'");
+		                              "ImplicitLogTimeSolver with linearSolver 'auto', 'petsc-gamg' or 'petsc-mumps'"
+		                            + (times.empty() ? std::string()
+		                                             : std::string(", and a run continued after O.load keeps the linear solver its first system took "
+		                                                           "(ImplicitLogTimeSolver.linearSolverUsed)")));
 }
 
 void LogTimeSolver::beginPhysicalStep()
@@ -245,7 +248,8 @@ bool LogTimeSolver::startIteration()
 	if (finished) return false;
 	const string err = takeFunctorError();
 	if (!err.empty()) fail(err);
-	if (kindsStale) {
+	if (kindsStale) { // the first iteration after O.load (a fresh run found both in initialize)
+		checkMpiRanks();
 		findLaw();
 		refreshKinds();
 		kindsStale = false;

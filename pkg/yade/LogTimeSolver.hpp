@@ -95,7 +95,8 @@ public:
 		cls.def("checkMpiRanks", &LogTimeSolver::checkMpiRanks,
 		        "Raises ValueError when the process runs under mpirun -n P (P > 1) and this solver, as set, would leave the "
 		        "ranks above 0 idle: only ImplicitLogTimeSolver with linearSolver 'auto', 'petsc-gamg' or 'petsc-mumps' shares its work "
-		        "(the linear solves) with them. The run checks it at its start; a script calls it to refuse earlier.");
+		        "(the linear solves) with them, and a run continued after O.load keeps the linear solver it started with. The run checks it at its start "
+		        "and at its first iteration after O.load; a script calls it to refuse earlier.");
 		cls.add_property("stepHook", &LogTimeSolver::getStepHook, &LogTimeSolver::setStepHook,
 		                 "Python callable run without arguments after every converged physical step, or None. Not saved "
 		                 "with the scene: set it again after O.load [-]");

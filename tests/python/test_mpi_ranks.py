@@ -84,6 +84,41 @@ def test_a_run_that_cannot_use_the_ranks_is_refused_before_any_work(tmp_path, ar
     assert not (tmp_path / "run" / "results.json").exists()
 
 
+def test_a_loaded_run_that_would_leave_the_ranks_idle_is_refused(tmp_path):
+    """A run started on one process, where auto takes CHOLMOD, saved after a step and loaded under
+    mpirun -n 2: it keeps its linear solver (linearSolverUsed), which would leave rank 1 idle, and is
+    refused at its first iteration after O.load, with the scene as loaded."""
+    from conftest import YadeRun
+    state = tmp_path / "state.yade"
+    start = FCC.format(n=5, tol=1e-10, solver="ImplicitLogTimeSolver") + f"""
+while solver.step < 2:
+    O.run(1, True)
+O.save({str(state)!r})
+dump({{"used": solver.linearSolverUsed, "step": solver.step}})
+"""
+    first = YadeRun(tmp_path / "one")
+    (tmp_path / "one").mkdir()
+    saved = first(start, threads=1, timeout=300)
+    assert saved == {"used": "cholmod", "step": 2}
+    go_on = f"""
+O.load({str(state)!r})
+solver = O.engines[-1]
+before = (solver.step, solver.totalIterations)
+try:
+    O.run(5, True)
+    error = ""
+except Exception as e:
+    error = str(e)
+dump({{"error": error, "before": before, "after": (solver.step, solver.totalIterations)}})
+"""
+    two = YadeRun(tmp_path / "two")
+    (tmp_path / "two").mkdir()
+    res = two(go_on, threads=1, ranks=2, timeout=300)
+    assert "ImplicitLogTimeSolver cannot go on on 2 MPI ranks (mpirun)" in res["error"], res
+    assert "a run continued after O.load keeps the linear solver its first system took (ImplicitLogTimeSolver.linearSolverUsed)" in res["error"]
+    assert res["after"] == res["before"], res
+
+
 def test_a_script_without_a_solver_ends_under_mpirun(yade_run):
     """The rank above waits for rank 0's commands from its start; rank 0 releases it at exit."""
     assert yade_run("dump({'ok': 1 + 1})", ranks=2, timeout=120) == {"ok": 2}

@@ -83,7 +83,8 @@ def test_solver_param_overrides_the_options_and_reaches_the_adr(tmp_path):
      "swelldem: solver_params name = 'fallbackIterations' is not a setting of the adr solver (AdrLogTimeIntegrator); allowed: "),
     (("--solver-param", "totalIterations=3"), "'totalIterations' is not a setting of the implicit solver"),
     (("--solver-param", "fallbackIterations=-1"), "ImplicitLogTimeSolver.fallbackIterations = -1 is out of range; allowed: >= 0"),
-    (("--solver-param", "gmresLimit=0"), "ImplicitLogTimeSolver.gmresLimit = 0 is out of range; allowed: >= 1"),
+    (("--solver-param", "gmresLimit=0"), "ImplicitLogTimeSolver.gmresLimit = 0 is out of range; allowed: 1 <= gmresLimit <= 1073741824"),
+    (("--solver-param", "gmresLimit=2147483648"), "ImplicitLogTimeSolver.gmresLimit = 2147483648 is out of range; allowed: 1 <= gmresLimit <= 1073741824"),
     (("--solver-param", "newtonLimit=abc"), "solver_params = \"newtonLimit='abc'\" is out of range; allowed: values of each setting's type"),
     (("--solver-param", "fallbackIterations"), "solver_param = 'fallbackIterations' is out of range; allowed: NAME=VALUE"),
 ])
