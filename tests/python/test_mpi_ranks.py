@@ -119,6 +119,35 @@ dump({{"error": error, "before": before, "after": (solver.step, solver.totalIter
     assert res["after"] == res["before"], res
 
 
+def test_a_gamg_run_saved_on_one_process_goes_on_on_two_ranks(tmp_path):
+    """The free FCC lattice with petsc-gamg saved after a step on one process: loaded under mpirun
+    -n 2 it goes on with its own solver, now sharing the solves, and ends where the unbroken run ends."""
+    from conftest import YadeRun
+    state = tmp_path / "state.yade"
+    end = """
+while not solver.finished:
+    O.run(2000, True)
+dump({"pos": [list(b.state.pos) for b in O.bodies], "used": solver.linearSolverUsed, "finished": solver.finished})
+"""
+    start = FCC.format(n=5, tol=1e-10, solver="ImplicitLogTimeSolver") + f"""
+solver.linearSolver = 'petsc-gamg'
+while solver.step < 2:
+    O.run(1, True)
+O.save({str(state)!r})
+""" + end
+    runs = {}
+    for name, script, ranks in (("one", start, 1), ("two", f"O.load({str(state)!r})\nsolver = O.engines[-1]\n" + end, 2)):
+        (tmp_path / name).mkdir()
+        runs[name] = YadeRun(tmp_path / name)(script, threads=1, ranks=ranks, timeout=300)
+    one, two = runs["one"], runs["two"]
+    assert one["finished"] and two["finished"] and two["used"] == "petsc-gamg"
+    opening = D_INF * (larive(3650.0) - larive(1.0))
+    apart = max(abs(a - b) for p, q in zip(one["pos"], two["pos"]) for a, b in zip(p, q)) / opening
+    print(f"measured: positions {apart:.1e} of an opening apart")
+    # measured 7.8e-12 (the two ranks' smoother blocks differ); bound the issue's 1e-8, as above
+    assert apart < 1e-8
+
+
 def test_a_script_without_a_solver_ends_under_mpirun(yade_run):
     """The rank above waits for rank 0's commands from its start; rank 0 releases it at exit."""
     assert yade_run("dump({'ok': 1 + 1})", ranks=2, timeout=120) == {"ok": 2}
