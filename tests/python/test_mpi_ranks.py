@@ -84,21 +84,30 @@ def test_a_run_that_cannot_use_the_ranks_is_refused_before_any_work(tmp_path, ar
     assert not (tmp_path / "run" / "results.json").exists()
 
 
+def _run_in(tmp_path, name, script, ranks):
+    """`script` run in its own folder tmp_path/name on `ranks` ranks (its own result.json, never an
+    earlier run's)."""
+    from conftest import YadeRun
+    (tmp_path / name).mkdir()
+    return YadeRun(tmp_path / name)(script, threads=1, ranks=ranks, timeout=300)
+
+
+def _lattice_saved_after_a_step(state, solver_setting=""):
+    """Script text: the free FCC lattice (5 layers) with the implicit solver, run on to step 2 and
+    saved to `state`."""
+    return FCC.format(n=5, tol=1e-10, solver="ImplicitLogTimeSolver") + solver_setting + f"""
+while solver.step < 2:
+    O.run(1, True)
+O.save({str(state)!r})
+"""
+
+
 def test_a_loaded_run_that_would_leave_the_ranks_idle_is_refused(tmp_path):
     """A run started on one process, where auto takes CHOLMOD, saved after a step and loaded under
     mpirun -n 2: it keeps its linear solver (linearSolverUsed), which would leave rank 1 idle, and is
     refused at its first iteration after O.load, with the scene as loaded."""
-    from conftest import YadeRun
     state = tmp_path / "state.yade"
-    start = FCC.format(n=5, tol=1e-10, solver="ImplicitLogTimeSolver") + f"""
-while solver.step < 2:
-    O.run(1, True)
-O.save({str(state)!r})
-dump({{"used": solver.linearSolverUsed, "step": solver.step}})
-"""
-    first = YadeRun(tmp_path / "one")
-    (tmp_path / "one").mkdir()
-    saved = first(start, threads=1, timeout=300)
+    saved = _run_in(tmp_path, "one", _lattice_saved_after_a_step(state) + 'dump({"used": solver.linearSolverUsed, "step": solver.step})\n', 1)
     assert saved == {"used": "cholmod", "step": 2}
     go_on = f"""
 O.load({str(state)!r})
@@ -111,9 +120,7 @@ except Exception as e:
     error = str(e)
 dump({{"error": error, "before": before, "after": (solver.step, solver.totalIterations)}})
 """
-    two = YadeRun(tmp_path / "two")
-    (tmp_path / "two").mkdir()
-    res = two(go_on, threads=1, ranks=2, timeout=300)
+    res = _run_in(tmp_path, "two", go_on, 2)
     assert "ImplicitLogTimeSolver cannot go on on 2 MPI ranks (mpirun)" in res["error"], res
     assert "a run continued after O.load keeps the linear solver its first system took (ImplicitLogTimeSolver.linearSolverUsed)" in res["error"]
     assert res["after"] == res["before"], res
@@ -122,24 +129,14 @@ dump({{"error": error, "before": before, "after": (solver.step, solver.totalIter
 def test_a_gamg_run_saved_on_one_process_goes_on_on_two_ranks(tmp_path):
     """The free FCC lattice with petsc-gamg saved after a step on one process: loaded under mpirun
     -n 2 it goes on with its own solver, now sharing the solves, and ends where the unbroken run ends."""
-    from conftest import YadeRun
     state = tmp_path / "state.yade"
     end = """
 while not solver.finished:
     O.run(2000, True)
 dump({"pos": [list(b.state.pos) for b in O.bodies], "used": solver.linearSolverUsed, "finished": solver.finished})
 """
-    start = FCC.format(n=5, tol=1e-10, solver="ImplicitLogTimeSolver") + f"""
-solver.linearSolver = 'petsc-gamg'
-while solver.step < 2:
-    O.run(1, True)
-O.save({str(state)!r})
-""" + end
-    runs = {}
-    for name, script, ranks in (("one", start, 1), ("two", f"O.load({str(state)!r})\nsolver = O.engines[-1]\n" + end, 2)):
-        (tmp_path / name).mkdir()
-        runs[name] = YadeRun(tmp_path / name)(script, threads=1, ranks=ranks, timeout=300)
-    one, two = runs["one"], runs["two"]
+    one = _run_in(tmp_path, "one", _lattice_saved_after_a_step(state, "\nsolver.linearSolver = 'petsc-gamg'\n") + end, 1)
+    two = _run_in(tmp_path, "two", f"O.load({str(state)!r})\nsolver = O.engines[-1]\n" + end, 2)
     assert one["finished"] and two["finished"] and two["used"] == "petsc-gamg"
     opening = D_INF * (larive(3650.0) - larive(1.0))
     apart = max(abs(a - b) for p, q in zip(one["pos"], two["pos"]) for a, b in zip(p, q)) / opening
