@@ -57,6 +57,18 @@ namespace {
 		if (!set) check(PetscOptionsSetValue(nullptr, ("-swelldem_" + name).c_str(), value), "PetscOptionsSetValue");
 	}
 
+	// PETSC_OPTIONS give every GAMG level's ICC fill (-swelldem_mg_levels_sub_pc_factor_levels),
+	// read before defaultOption sets it: then no level's fill is chosen here
+	bool allLevelsGiven()
+	{
+		static const bool given = [] {
+			PetscBool set = PETSC_FALSE;
+			check(PetscOptionsHasName(nullptr, "swelldem_", "-mg_levels_sub_pc_factor_levels", &set), "PetscOptionsHasName");
+			return bool(set);
+		}();
+		return given;
+	}
+
 	MPI_Comm world() { return PETSC_COMM_WORLD; }
 	int      rankOf()
 	{
@@ -333,18 +345,21 @@ namespace {
 				if (gamg_) {
 					check(KSPSetType(ksp_, KSPCG), "KSPSetType");
 					check(PCSetType(pc, PCGAMG), "PCSetType");
-					// The levels smooth with an incomplete Cholesky factor (one fill level) of the
-					// assembled matrix, one block a rank, not the operator with its rank-one terms.
-					// A packing's spheres have few contacts (6.5 a sphere), so neighbours turn against
-					// each other at little cost; such local rolling modes are neither in the rigid-body
-					// coarse space nor damped by a sphere's own 6 x 6 block. ICC(1) couples each sphere
-					// to its neighbours' rotations, and the CG iterations stop growing with the size
-					// (ISR cube, first step, a solve: 12 mm 11, 20 mm 16, 30 mm 23 against 40, 67, 362
-					// with point-block Jacobi). PETSC_OPTIONS given with the prefix swelldem_ take
-					// precedence.
+					// The levels smooth with an incomplete Cholesky factor of the assembled matrix, one
+					// block a rank, not the operator with its rank-one terms. A packing's spheres have
+					// few contacts (6.5 a sphere), so neighbours turn against each other at little cost;
+					// such local rolling modes are neither in the rigid-body coarse space nor damped by
+					// a sphere's own 6 x 6 block. On the finest level ICC(1) couples each sphere to its
+					// neighbours' rotations, and the CG iterations stop growing with the size (ISR cube,
+					// first step, a solve: 12 mm 11, 20 mm 16, 30 mm 23 against 40, 67, 362 with
+					// point-block Jacobi). The coarser levels take ICC(0): aggregates of aggregates are
+					// dense (40 mm: 7,512 rows of 1,177 entries), where one fill level makes a nearly
+					// full factor (40 mm first step: set-up 28 s against 89 s, 106 CG iterations
+					// against 103). PETSC_OPTIONS given with the prefix swelldem_ take precedence.
+					allLevelsGiven();
 					defaultOption("mg_levels_pc_type", "bjacobi");
 					defaultOption("mg_levels_sub_pc_type", "icc");
-					defaultOption("mg_levels_sub_pc_factor_levels", "1");
+					defaultOption("mg_levels_sub_pc_factor_levels", "0");
 					// two Chebyshev sweeps: 25 mm, 18 CG iterations a solve against 14 with four, but
 					// a shorter step (24.2 against 26.8 s)
 					defaultOption("mg_levels_ksp_max_it", "2");
@@ -389,8 +404,40 @@ namespace {
 			check(KSPSetReusePreconditioner(ksp_, PETSC_FALSE), "KSPSetReusePreconditioner");
 			check(KSPSetOperators(ksp_, gamg_ ? shell_ : pre_, pre_), "KSPSetOperators");
 			check(KSPSetUp(ksp_), "KSPSetUp");
+			if (gamg_ && finestNeedsFill()) {
+				KSPDestroy(&ksp_), chosenType_ = nullptr;
+				setupAll(); // the near-null space stays with pre_
+				return;
+			}
 			if (!gamg_) checkFactor();
 			check(KSPSetReusePreconditioner(ksp_, PETSC_TRUE), "KSPSetReusePreconditioner");
+		}
+
+		// PCMG numbers its levels from the coarsest, so the finest level's options are known by number
+		// only once GAMG has coarsened. When the hierarchy just made smoothed its finest level without
+		// the fill (the first set-up in a process, or a pattern that coarsens to another number of
+		// levels), the option is set and a new KSP built with it (a PC reset and set up again in place
+		// gave an indefinite preconditioner at 40 mm): a set-up more, once. Later set-ups keep the levels.
+		bool finestNeedsFill()
+		{
+			PC       pc;
+			PetscInt levels = 0;
+			check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+			check(PCMGGetLevels(pc, &levels), "PCMGGetLevels");
+			if (levels < 2 || allLevelsGiven()) return false;
+			const std::string name = "-swelldem_mg_levels_" + std::to_string(levels - 1) + "_sub_pc_factor_levels";
+			if (name == finestOption_) return false;
+			// PETSc's look-up of a numbered level falls back to every level's option: the user's own
+			// option for this level is found in the list itself
+			char* all = nullptr;
+			check(PetscOptionsGetAll(nullptr, &all), "PetscOptionsGetAll");
+			const bool given = (" " + std::string(all ? all : "") + " ").find(" " + name + " ") != std::string::npos;
+			PetscFree(all);
+			if (given) return false;
+			if (!finestOption_.empty()) check(PetscOptionsClearValue(nullptr, finestOption_.c_str()), "PetscOptionsClearValue");
+			check(PetscOptionsSetValue(nullptr, name.c_str(), "1"), "PetscOptionsSetValue");
+			finestOption_ = name;
+			return true;
 		}
 
 		// MUMPS sizes the factor's workspace from its analysis's estimate plus ICNTL(14) per cent, and
@@ -574,6 +621,7 @@ namespace {
 		VecScatter                       toZero_ = nullptr;
 		KSP                              ksp_ = nullptr;
 		KSPType                          chosenType_ = nullptr;
+		std::string                      finestOption_; // the finest level's fill, set here (PETSc's options are global)
 		ShellContext                     context_;
 	};
 } // namespace
