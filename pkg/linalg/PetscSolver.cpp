@@ -621,7 +621,8 @@ namespace {
 		VecScatter                       toZero_ = nullptr;
 		KSP                              ksp_ = nullptr;
 		KSPType                          chosenType_ = nullptr;
-		std::string                      finestOption_; // the finest level's fill, set here (PETSc's options are global)
+		// the finest level's fill, set here; PETSc's options are the process's, as this is
+		static inline std::string finestOption_;
 		ShellContext                     context_;
 	};
 } // namespace

@@ -215,6 +215,29 @@ def run_conditions(res):
     return out
 
 
+def run_numerics(res):
+    """How a run was solved, as short texts: the solver, the linear solver an implicit run used
+    (when not CHOLMOD), the physical steps a decade, and the solver's settings given to the run
+    (its config's tolerance and solver_params, without verbose). Numerics, not conditions: they do
+    not take the paper's values away from a table (run_conditions does)."""
+    cfg = res.get("config") or {}
+    solver = res.get("solver") or cfg.get("solver")
+    if not solver:
+        return []
+    out = ["ADR" if solver == "adr" else f"{solver} solver"]
+    linear = (res.get("linear_solver") or {}).get("name")
+    if solver == "implicit" and linear and linear != "cholmod":
+        out.append(f"linear solver {linear}")
+    spd = (res.get("solver_settings") or {}).get("stepsPerDecade", cfg.get("steps_per_decade"))
+    if spd:
+        out.append(f"{spd:g} steps a decade")
+    if cfg.get("tolerance") is not None:
+        out.append(f"tolerance {cfg['tolerance']:g}")
+    given = {k: v for k, v in (cfg.get("solver_params") or {}).items() if k not in ("verbose", "linearSolver")}
+    out += [f"{k}={f'{v:g}' if isinstance(v, float) else v}" for k, v in sorted(given.items())]
+    return out
+
+
 def mean_expansion(res):
     """(times [day], the mean of the x and y swelling strains [-] at each): a run's expansion as
     the study scripts plot it."""
@@ -392,10 +415,11 @@ def write_tables(out, res):
 
 
 def _title(res):
-    """The run: scenario, behaviour, damage, and its conditions away from the paper's (run_conditions)."""
-    cond = run_conditions(res)
+    """The run: scenario, behaviour, damage, its numerics (run_numerics) and its conditions away from
+    the paper's (run_conditions)."""
+    cond, numerics = run_conditions(res), run_numerics(res)
     return (f"{LABEL.get(res['scenario'], res['scenario'])}, {res['behaviour']}, damage {'on' if res['damage'] else 'off'}"
-            + (f"\n{', '.join(cond)}" if cond else ""))
+            + (f"; {', '.join(numerics)}" if numerics else "") + (f"\n{', '.join(cond)}" if cond else ""))
 
 
 def _save(fig, path, dpi=120):

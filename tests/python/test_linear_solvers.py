@@ -157,6 +157,9 @@ def test_a_loaded_box_with_gamg_ends_as_with_cholmod(tmp_path):
         res[name] = json.loads((tmp_path / name / "run" / "results.json").read_text())
     a, b = res["cholmod"], res["petsc-gamg"]
     assert b["solver_settings"]["linearSolver"] == "petsc-gamg"
+    from swelldem import report
+    assert report.run_numerics(b) == ["implicit solver", "linear solver petsc-gamg", "2 steps a decade"]
+    assert report.run_numerics(a) == ["implicit solver", "2 steps a decade"]
     err = {k: max(abs(x - y) for x, y in zip(a[k], b[k])) / max(abs(x) for x in a[k])
            for k in ("swelling_strain_x", "swelling_strain_y", "swelling_strain_z", "platen_disp_z_m")}
     print("measured: GAMG against CHOLMOD, largest difference over the run relative to the largest value:", err)

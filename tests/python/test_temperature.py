@@ -216,4 +216,6 @@ def test_a_38_c_run_is_named_so_and_set_beside_its_own_free_swelling(tmp_path):
     assert "Conditions: 38 C" in table and "the paper's values are not set beside it" in table
     assert "| - |" in table
     assert report.run_conditions(res) == ["38 C", "aggregate_area_fraction=0", "t_end_days=3650"]
+    # the numerics go to the figures' titles, not to the conditions that take the paper's values away
+    assert report.run_numerics(res) == ["implicit solver", "4 steps a decade"]
     assert report.crack_map_days(res) == [float(f"{tl:.4g}"), float(f"{2 * tl:.4g}")]
