@@ -334,51 +334,55 @@ namespace {
 			setLocalValues(op_);
 		}
 
+		// the KSP and its preconditioner, with the options of the moment (PETSC_OPTIONS first)
+		void createKsp()
+		{
+			check(KSPCreate(world(), &ksp_), "KSPCreate");
+			check(KSPSetOptionsPrefix(ksp_, "swelldem_"), "KSPSetOptionsPrefix");
+			PC pc;
+			check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+			if (gamg_) {
+				check(KSPSetType(ksp_, KSPCG), "KSPSetType");
+				check(PCSetType(pc, PCGAMG), "PCSetType");
+				// The levels smooth with an incomplete Cholesky factor of the assembled matrix, one
+				// block a rank, not the operator with its rank-one terms. A packing's spheres have
+				// few contacts (6.5 a sphere), so neighbours turn against each other at little cost;
+				// such local rolling modes are neither in the rigid-body coarse space nor damped by
+				// a sphere's own 6 x 6 block. On the finest level ICC(1) couples each sphere to its
+				// neighbours' rotations, and the CG iterations stop growing with the size (ISR cube,
+				// first step, a solve: 12 mm 11, 20 mm 16, 30 mm 23 against 40, 67, 362 with
+				// point-block Jacobi). The coarser levels take ICC(0): aggregates of aggregates are
+				// dense (40 mm: 7,512 rows of 1,177 entries), where one fill level makes a nearly
+				// full factor (40 mm first step: set-up 28 s against 89 s, 106 CG iterations
+				// against 103). PETSC_OPTIONS given with the prefix swelldem_ take precedence.
+				allLevelsGiven(); // read now, before defaultOption gives every level its fill
+				defaultOption("mg_levels_pc_type", "bjacobi");
+				defaultOption("mg_levels_sub_pc_type", "icc");
+				defaultOption("mg_levels_sub_pc_factor_levels", "0");
+				// two Chebyshev sweeps: 25 mm, 18 CG iterations a solve against 14 with four, but
+				// a shorter step (24.2 against 26.8 s)
+				defaultOption("mg_levels_ksp_max_it", "2");
+			} else {
+				check(KSPSetType(ksp_, KSPPREONLY), "KSPSetType");
+				check(PCSetType(pc, PCCHOLESKY), "PCSetType");
+				check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+				// MUMPS sizes the factor's workspace from its analysis's estimate plus ICNTL(14) per
+				// cent; across ranks the estimate falls short (12 mm ISR cube on 2 ranks: INFOG(1) =
+				// -9 at PETSc's default), with a 100 % margin it holds
+				if (sizeOf() > 1) defaultOption("mat_mumps_icntl_14", "100");
+			}
+			check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+			// after the user's options: the shell operator (its rank-one terms) has no entries a
+			// smoother could read, so the preconditioner works on the assembled matrix whatever
+			// PETSC_OPTIONS say (PETSc's own SOR on the shell ends the process)
+			if (gamg_) check(PCSetUseAmat(pc, PETSC_FALSE), "PCSetUseAmat");
+			check(KSPGetType(ksp_, &chosenType_), "KSPGetType");
+		}
+
 		void setupAll()
 		{
 			setLocalValues(pre_);
-			if (!ksp_) {
-				check(KSPCreate(world(), &ksp_), "KSPCreate");
-				check(KSPSetOptionsPrefix(ksp_, "swelldem_"), "KSPSetOptionsPrefix");
-				PC pc;
-				check(KSPGetPC(ksp_, &pc), "KSPGetPC");
-				if (gamg_) {
-					check(KSPSetType(ksp_, KSPCG), "KSPSetType");
-					check(PCSetType(pc, PCGAMG), "PCSetType");
-					// The levels smooth with an incomplete Cholesky factor of the assembled matrix, one
-					// block a rank, not the operator with its rank-one terms. A packing's spheres have
-					// few contacts (6.5 a sphere), so neighbours turn against each other at little cost;
-					// such local rolling modes are neither in the rigid-body coarse space nor damped by
-					// a sphere's own 6 x 6 block. On the finest level ICC(1) couples each sphere to its
-					// neighbours' rotations, and the CG iterations stop growing with the size (ISR cube,
-					// first step, a solve: 12 mm 11, 20 mm 16, 30 mm 23 against 40, 67, 362 with
-					// point-block Jacobi). The coarser levels take ICC(0): aggregates of aggregates are
-					// dense (40 mm: 7,512 rows of 1,177 entries), where one fill level makes a nearly
-					// full factor (40 mm first step: set-up 28 s against 89 s, 106 CG iterations
-					// against 103). PETSC_OPTIONS given with the prefix swelldem_ take precedence.
-					allLevelsGiven();
-					defaultOption("mg_levels_pc_type", "bjacobi");
-					defaultOption("mg_levels_sub_pc_type", "icc");
-					defaultOption("mg_levels_sub_pc_factor_levels", "0");
-					// two Chebyshev sweeps: 25 mm, 18 CG iterations a solve against 14 with four, but
-					// a shorter step (24.2 against 26.8 s)
-					defaultOption("mg_levels_ksp_max_it", "2");
-				} else {
-					check(KSPSetType(ksp_, KSPPREONLY), "KSPSetType");
-					check(PCSetType(pc, PCCHOLESKY), "PCSetType");
-					check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
-					// MUMPS sizes the factor's workspace from its analysis's estimate plus ICNTL(14) per
-					// cent; across ranks the estimate falls short (12 mm ISR cube on 2 ranks: INFOG(1) =
-					// -9 at PETSc's default), with a 100 % margin it holds
-					if (sizeOf() > 1) defaultOption("mat_mumps_icntl_14", "100");
-				}
-				check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
-				// after the user's options: the shell operator (its rank-one terms) has no entries a
-				// smoother could read, so the preconditioner works on the assembled matrix whatever
-				// PETSC_OPTIONS say (PETSc's own SOR on the shell ends the process)
-				if (gamg_) check(PCSetUseAmat(pc, PETSC_FALSE), "PCSetUseAmat");
-				check(KSPGetType(ksp_, &chosenType_), "KSPGetType");
-			}
+			if (!ksp_) createKsp();
 			int modes = gamg_ && haveNull_ ? int(nullModes_.size()) : 0;
 			broadcast(&modes, 1);
 			if (modes > 0) {
@@ -401,13 +405,14 @@ namespace {
 					VecDestroy(&v);
 				haveNull_ = false;
 			}
-			check(KSPSetReusePreconditioner(ksp_, PETSC_FALSE), "KSPSetReusePreconditioner");
-			check(KSPSetOperators(ksp_, gamg_ ? shell_ : pre_, pre_), "KSPSetOperators");
-			check(KSPSetUp(ksp_), "KSPSetUp");
-			if (gamg_ && finestNeedsFill()) {
+			for (;;) {
+				check(KSPSetReusePreconditioner(ksp_, PETSC_FALSE), "KSPSetReusePreconditioner");
+				check(KSPSetOperators(ksp_, gamg_ ? shell_ : pre_, pre_), "KSPSetOperators");
+				check(KSPSetUp(ksp_), "KSPSetUp");
+				if (!gamg_ || !finestNeedsFill()) break;
+				// a new KSP reads the finest level's option; pre_ keeps its values and near-null space
 				KSPDestroy(&ksp_), chosenType_ = nullptr;
-				setupAll(); // the near-null space stays with pre_
-				return;
+				createKsp();
 			}
 			if (!gamg_) checkFactor();
 			check(KSPSetReusePreconditioner(ksp_, PETSC_TRUE), "KSPSetReusePreconditioner");

@@ -234,8 +234,7 @@ def run_numerics(res):
     if cfg.get("tolerance") is not None:
         out.append(f"tolerance {cfg['tolerance']:g}")
     given = {k: v for k, v in (cfg.get("solver_params") or {}).items() if k not in ("verbose", "linearSolver")}
-    out += [f"{k}={f'{v:g}' if isinstance(v, float) else v}" for k, v in sorted(given.items())]
-    return out
+    return out + _name_values(given)
 
 
 def mean_expansion(res):
@@ -1081,22 +1080,26 @@ def setting_text(res, key):
     """A setting's value as a comparison prints it: numbers with %g, lists spaced, dicts as
     NAME=VALUE with nested names joined by dots (kind_params {"ITZ": {"tensileStrength": 3e6}} ->
     ITZ.tensileStrength=3e+06, the form of --kind-param)."""
-    def flat(prefix, v):
-        if isinstance(v, dict):
-            return [p for k in sorted(v) for p in flat(f"{prefix}.{k}" if prefix else str(k), v[k])]
-        return [f"{prefix}={one(v)}"]
-
-    def one(v):
-        if isinstance(v, float):
-            return f"{v:g}"
-        if isinstance(v, (list, tuple)):
-            return " ".join(one(x) for x in v)
-        return str(v)
-
     v = (res.get("config") or {}).get(key)
     if isinstance(v, dict):
-        return " ".join(flat("", v)) or "defaults"  # {}: nothing set away from the scenario's values
-    return one(v)
+        return " ".join(_name_values(v)) or "defaults"  # {}: nothing set away from the scenario's values
+    return _setting_value(v)
+
+
+def _name_values(settings, prefix=""):
+    """NAME=VALUE texts of a dict of settings, sorted, nested names joined by dots."""
+    if not isinstance(settings, dict):
+        return [f"{prefix}={_setting_value(settings)}"]
+    return [p for k in sorted(settings) for p in _name_values(settings[k], f"{prefix}.{k}" if prefix else str(k))]
+
+
+def _setting_value(v):
+    """A setting's value as text: numbers with %g, lists spaced."""
+    if isinstance(v, float):
+        return f"{v:g}"
+    if isinstance(v, (list, tuple)):
+        return " ".join(_setting_value(x) for x in v)
+    return str(v)
 
 
 def run_label(res, settings=()):
